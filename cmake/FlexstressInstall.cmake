@@ -1,0 +1,27 @@
+# Install the headers and a relocatable CMake package (flexstressConfig.cmake + version file).
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+# Header-only and architecture-independent: the package goes under share/.
+set(FLEXSTRESS_INSTALL_CMAKEDIR "${CMAKE_INSTALL_DATADIR}/cmake/flexstress"
+  CACHE STRING "Where the flexstress CMake package is installed")
+
+install(TARGETS flexstress EXPORT flexstressTargets)
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/flexstress"
+  DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+install(EXPORT flexstressTargets
+  NAMESPACE flexstress::
+  DESTINATION "${FLEXSTRESS_INSTALL_CMAKEDIR}")
+
+configure_package_config_file(
+  "${PROJECT_SOURCE_DIR}/cmake/flexstressConfig.cmake.in"
+  "${PROJECT_BINARY_DIR}/flexstressConfig.cmake"
+  INSTALL_DESTINATION "${FLEXSTRESS_INSTALL_CMAKEDIR}")
+write_basic_package_version_file(
+  "${PROJECT_BINARY_DIR}/flexstressConfigVersion.cmake"
+  COMPATIBILITY SameMinorVersion
+  ARCH_INDEPENDENT)
+install(FILES
+  "${PROJECT_BINARY_DIR}/flexstressConfig.cmake"
+  "${PROJECT_BINARY_DIR}/flexstressConfigVersion.cmake"
+  DESTINATION "${FLEXSTRESS_INSTALL_CMAKEDIR}")

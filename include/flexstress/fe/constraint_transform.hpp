@@ -1,0 +1,210 @@
+// Exact elimination of prescribed DOFs and rigid links by a transformation:
+//
+//   u_all = T u_free + G v,
+//
+// with u_free the independent unknowns, v the values of the prescribed DOFs (in the order of
+// prescribed_dofs()), T (n_all x n_free) and G (n_all x n_prescribed) sparse. Rigid links
+// (RBE2) give slave rows u_s = u_m + theta_m x (x_s - x_m) = u_m - skew(x_s - x_m) theta_m and
+// theta_s = theta_m; chains of links (a slave that is the master of another link) are resolved
+// recursively, loops are an error. The reduced stiffness is T^T K T and the load
+// T^T (f - K G v): no penalty, no Lagrange multipliers.
+//
+// Keeping G separate from the values lets one factorization of T^T K T serve any prescribed
+// values: Craig-Bampton constraint modes and sub-model influence matrices are unit values of v.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+#include "flexstress/core/skew.hpp"
+#include "flexstress/core/status.hpp"
+#include "flexstress/core/types.hpp"
+#include "flexstress/fe/boundary_conditions.hpp"
+#include "flexstress/fe/dof_map.hpp"
+#include "flexstress/fe/mesh.hpp"
+
+namespace flexstress::fe {
+
+using SparseMatrixd = Eigen::SparseMatrix<double>;
+
+class ConstraintTransform {
+ public:
+  enum class DofKind : unsigned char { free, prescribed, slave };
+
+  /// Builds T and G. Fails, naming the node, DOF and link, for prescribed DOFs on nodes that do
+  /// not exist or lack the component, DOFs prescribed twice, prescribed slave DOFs, nodes that
+  /// are slaves of two links, and loops of rigid links.
+  static Result<ConstraintTransform> build(const Mesh& mesh, const DofMap& dofs,
+                                           const BoundaryConditions& bc) {
+    ConstraintTransform ct;
+    const Index n = dofs.size();
+    ct.kind_.assign(static_cast<std::size_t>(n), DofKind::free);
+    ct.column_.assign(static_cast<std::size_t>(n), -1);
+
+    // Which link drives each node (as a slave).
+    std::vector<Index> slave_of(static_cast<std::size_t>(mesh.num_nodes()), -1);
+    for (std::size_t l = 0; l < mesh.rigid_links().size(); ++l) {
+      for (Index s : mesh.rigid_links()[l].slaves) {
+        Index& owner = slave_of[static_cast<std::size_t>(s)];
+        if (owner >= 0 && owner != static_cast<Index>(l))
+          return make_error(ErrorCode::invalid_mesh, "node ", s, " is a slave of rigid links ",
+                            owner, " and ", l, "; a node can follow only one master");
+        owner = static_cast<Index>(l);
+      }
+    }
+    // Loops: follow master chains.
+    for (std::size_t l = 0; l < mesh.rigid_links().size(); ++l) {
+      Index node = mesh.rigid_links()[l].master;
+      std::size_t steps = 0;
+      while (slave_of[static_cast<std::size_t>(node)] >= 0) {
+        if (++steps > mesh.rigid_links().size())
+          return make_error(ErrorCode::invalid_mesh, "rigid link ", l,
+                            " is part of a loop of rigid links (its master node ",
+                            mesh.rigid_links()[l].master,
+                            " is, through a chain of links, a slave of itself)");
+        node = mesh.rigid_links()[static_cast<std::size_t>(slave_of[static_cast<std::size_t>(node)])].master;
+      }
+    }
+    for (Index node = 0; node < mesh.num_nodes(); ++node)
+      if (slave_of[static_cast<std::size_t>(node)] >= 0)
+        for (int c = 0; c < dofs.num_node_dofs(node); ++c)
+          ct.kind_[static_cast<std::size_t>(dofs.dof(node, c))] = DofKind::slave;
+
+    // Prescribed DOFs, in the order given (selectors expand in component order).
+    std::vector<double> values;
+    auto prescribe = [&](Index node, int c, double value) -> Status {
+      const Index d = dofs.dof(node, c);
+      if (d < 0)
+        return make_error(ErrorCode::invalid_argument, "prescribed displacement on node ", node,
+                          " component ", dof_component_name(c), ": the node has ",
+                          dofs.num_node_dofs(node), " DOFs");
+      auto& k = ct.kind_[static_cast<std::size_t>(d)];
+      if (k == DofKind::slave)
+        return make_error(ErrorCode::invalid_argument, "prescribed displacement on ",
+                          dofs.describe(d), ", which rigid link ",
+                          slave_of[static_cast<std::size_t>(node)],
+                          " drives; prescribe the link's master instead");
+      if (k == DofKind::prescribed)
+        return make_error(ErrorCode::invalid_argument, dofs.describe(d),
+                          " is prescribed twice");
+      k = DofKind::prescribed;
+      ct.column_[static_cast<std::size_t>(d)] = static_cast<Index>(ct.prescribed_.size());
+      ct.prescribed_.push_back(d);
+      values.push_back(value);
+      return Status::success();
+    };
+    for (const auto& p : bc.prescribed()) {
+      if (p.node < 0 || p.node >= mesh.num_nodes())
+        return make_error(ErrorCode::invalid_argument, "prescribed displacement on node ", p.node,
+                          ", which does not exist (the mesh has ", mesh.num_nodes(), " nodes)");
+      if (!std::isfinite(p.value))
+        return make_error(ErrorCode::invalid_argument, "prescribed displacement on node ", p.node,
+                          " component ", dof_component_name(p.component), " is not finite");
+      if (dofs.num_node_dofs(p.node) == 0)
+        return make_error(ErrorCode::invalid_argument, "prescribed displacement on node ", p.node,
+                          ", which no element uses (it has no DOFs)");
+      if (p.component == all_components || p.component == translation_components) {
+        const int last = p.component == all_components ? dofs.num_node_dofs(p.node) : 3;
+        for (int c = 0; c < last; ++c)
+          if (Status s = prescribe(p.node, c, p.value); !s) return s.error();
+      } else if (p.component < 0 || p.component > 5) {
+        return make_error(ErrorCode::invalid_argument, "prescribed displacement on node ", p.node,
+                          ": component ", p.component, " is not one of 0..5");
+      } else if (Status s = prescribe(p.node, p.component, p.value); !s) {
+        return s.error();
+      }
+    }
+    ct.values_ = Eigen::Map<const VectorXd>(values.data(), static_cast<Index>(values.size()));
+
+    // Free columns.
+    for (Index d = 0; d < n; ++d)
+      if (ct.kind_[static_cast<std::size_t>(d)] == DofKind::free) {
+        ct.column_[static_cast<std::size_t>(d)] = ct.num_free_;
+        ct.free_.push_back(d);
+        ++ct.num_free_;
+      }
+
+    // Rows as sparse combinations of [free | prescribed] columns, resolved recursively.
+    using Row = std::vector<std::pair<Index, double>>;  // (column in [free|prescribed], coeff)
+    std::vector<Row> rows(static_cast<std::size_t>(n));
+    std::vector<char> done(static_cast<std::size_t>(n), 0);
+    const Index nf = ct.num_free_;
+    auto resolve = [&](auto&& self, Index d) -> const Row& {
+      auto& row = rows[static_cast<std::size_t>(d)];
+      if (done[static_cast<std::size_t>(d)]) return row;
+      const auto k = ct.kind_[static_cast<std::size_t>(d)];
+      if (k == DofKind::free) {
+        row.push_back({ct.column_[static_cast<std::size_t>(d)], 1.0});
+      } else if (k == DofKind::prescribed) {
+        row.push_back({nf + ct.column_[static_cast<std::size_t>(d)], 1.0});
+      } else {
+        const Index node = dofs.node_of(d);
+        const int c = dofs.component_of(d);
+        const Index master =
+            mesh.rigid_links()[static_cast<std::size_t>(slave_of[static_cast<std::size_t>(node)])]
+                .master;
+        Row combined;
+        auto add = [&](const Row& r, double f) {
+          if (f == 0.0) return;
+          for (const auto& [col, v] : r) combined.push_back({col, f * v});
+        };
+        if (c < 3) {
+          const Matrix3d s = skew(Vector3d(mesh.node(node) - mesh.node(master)));
+          add(self(self, dofs.dof(master, c)), 1.0);
+          for (int b = 0; b < 3; ++b) add(self(self, dofs.dof(master, 3 + b)), -s(c, b));
+        } else {
+          add(self(self, dofs.dof(master, c)), 1.0);
+        }
+        row = std::move(combined);
+      }
+      done[static_cast<std::size_t>(d)] = 1;
+      return row;
+    };
+    std::vector<Eigen::Triplet<double>> t_trip, g_trip;
+    for (Index d = 0; d < n; ++d)
+      for (const auto& [col, v] : resolve(resolve, d))
+        (col < nf ? t_trip : g_trip).emplace_back(d, col < nf ? col : col - nf, v);
+    ct.t_.resize(n, nf);
+    ct.t_.setFromTriplets(t_trip.begin(), t_trip.end());
+    ct.g_.resize(n, static_cast<Index>(ct.prescribed_.size()));
+    ct.g_.setFromTriplets(g_trip.begin(), g_trip.end());
+    return ct;
+  }
+
+  Index num_all() const { return t_.rows(); }
+  Index num_free() const { return num_free_; }
+  Index num_prescribed() const { return static_cast<Index>(prescribed_.size()); }
+  /// T: all DOFs from free DOFs.
+  const SparseMatrixd& free_to_all() const { return t_; }
+  /// G: all DOFs from prescribed values.
+  const SparseMatrixd& prescribed_to_all() const { return g_; }
+  /// The prescribed values given in the boundary conditions.
+  const VectorXd& prescribed_values() const { return values_; }
+  /// Global DOF of each prescribed value.
+  const std::vector<Index>& prescribed_dofs() const { return prescribed_; }
+  /// Global DOF of each free unknown.
+  const std::vector<Index>& free_dofs() const { return free_; }
+  DofKind kind(Index dof) const { return kind_[static_cast<std::size_t>(dof)]; }
+  /// Index among the free unknowns (or among prescribed values), -1 for slaves.
+  Index column(Index dof) const { return column_[static_cast<std::size_t>(dof)]; }
+
+  /// u_all = T u_free + G v.
+  VectorXd expand(const VectorXd& u_free, const VectorXd& values) const {
+    return t_ * u_free + g_ * values;
+  }
+  VectorXd expand(const VectorXd& u_free) const { return expand(u_free, values_); }
+
+ private:
+  SparseMatrixd t_, g_;
+  VectorXd values_;
+  std::vector<DofKind> kind_;
+  std::vector<Index> column_;
+  std::vector<Index> prescribed_;
+  std::vector<Index> free_;
+  Index num_free_ = 0;
+};
+
+}  // namespace flexstress::fe

@@ -1,0 +1,52 @@
+// The six rigid-body motions of a mesh as nodal DOF vectors: translations along x, y, z and
+// small rotations about axes through a point c: u = e x (x - c), theta = e.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/types.hpp"
+#include "flexstress/fe/dof_map.hpp"
+#include "flexstress/fe/mesh.hpp"
+
+namespace flexstress::fe {
+
+/// n_all x 6 matrix: columns translation x, y, z, rotation about x, y, z (about `center`).
+inline MatrixXd rigid_body_modes(const Mesh& mesh, const DofMap& dofs, const Vector3d& center) {
+  MatrixXd r = MatrixXd::Zero(dofs.size(), 6);
+  for (Index n = 0; n < mesh.num_nodes(); ++n) {
+    const int nd = dofs.num_node_dofs(n);
+    if (nd == 0) continue;
+    const Vector3d d = mesh.node(n) - center;
+    for (int j = 0; j < 3; ++j) {
+      r(dofs.dof(n, j), j) = 1.0;
+      const Vector3d u = Vector3d::Unit(j).cross(d);
+      for (int c = 0; c < 3; ++c) r(dofs.dof(n, c), 3 + j) = u(c);
+      if (nd == 6) r(dofs.dof(n, 3 + j), 3 + j) = 1.0;
+    }
+  }
+  return r;
+}
+
+/// Centroid of the nodes that carry DOFs.
+inline Vector3d dof_node_centroid(const Mesh& mesh, const DofMap& dofs) {
+  Vector3d c = Vector3d::Zero();
+  Index count = 0;
+  for (Index n = 0; n < mesh.num_nodes(); ++n)
+    if (dofs.num_node_dofs(n) > 0) {
+      c += mesh.node(n);
+      ++count;
+    }
+  return count > 0 ? Vector3d(c / static_cast<double>(count)) : c;
+}
+
+/// "translation along x", "rotation about z", ... for rigid mode column j.
+inline std::string rigid_mode_name(int j) {
+  static const char* names[6] = {"translation along x", "translation along y",
+                                 "translation along z", "rotation about x",
+                                 "rotation about y",    "rotation about z"};
+  return names[j];
+}
+
+}  // namespace flexstress::fe

@@ -71,17 +71,22 @@ TEST_CASE("cantilever tip load and tip moment: exact at the nodes (Hermite beam)
   const VectorXd u = solver->solve(*load);
   // Tip load: P L^3 / (3 E I) in each plane, with the plane's own second moment.
   const double l3 = std::pow(f.length, 3);
-  CHECK(u(model->dofs.dof(tip, 1)) == doctest::Approx(p * l3 / (3 * e * f.section.iz)).epsilon(1e-10));
-  CHECK(u(model->dofs.dof(tip, 2)) == doctest::Approx(p * l3 / (3 * e * f.section.iy)).epsilon(1e-10));
+  CHECK(u(model->dofs.dof(tip, 1)) ==
+        doctest::Approx(p * l3 / (3 * e * f.section.iz)).epsilon(1e-10));
+  CHECK(u(model->dofs.dof(tip, 2)) ==
+        doctest::Approx(p * l3 / (3 * e * f.section.iy)).epsilon(1e-10));
   // Tip slope P L^2 / (2 E I); rz = dv/dx, ry = -dw/dx.
   const double l2 = f.length * f.length;
-  CHECK(u(model->dofs.dof(tip, 5)) == doctest::Approx(p * l2 / (2 * e * f.section.iz)).epsilon(1e-10));
-  CHECK(u(model->dofs.dof(tip, 4)) == doctest::Approx(-p * l2 / (2 * e * f.section.iy)).epsilon(1e-10));
+  CHECK(u(model->dofs.dof(tip, 5)) ==
+        doctest::Approx(p * l2 / (2 * e * f.section.iz)).epsilon(1e-10));
+  CHECK(u(model->dofs.dof(tip, 4)) ==
+        doctest::Approx(-p * l2 / (2 * e * f.section.iy)).epsilon(1e-10));
   // Tip moment M about z: deflection M L^2 / (2 E I).
   auto mload = load_vector(model->dofs, {{tip, 5, moment}});
   REQUIRE(mload.ok());
   const VectorXd um = solver->solve(*mload);
-  CHECK(um(model->dofs.dof(tip, 1)) == doctest::Approx(moment * l2 / (2 * e * f.section.iz)).epsilon(1e-10));
+  CHECK(um(model->dofs.dof(tip, 1)) ==
+        doctest::Approx(moment * l2 / (2 * e * f.section.iz)).epsilon(1e-10));
   // Bending stress at the clamp, top fibre: M c / I with M = P L (sigma = -M y / I, tension
   // on top for a downward... here the load is +y, so the top fibre y = +h/2 is compressed).
   const BeamElement& root = f.mesh.beams().front();
@@ -261,7 +266,8 @@ TEST_CASE("bad beam input gets a clear error") {
     m2.add_beam(m2.add_node(Vector3d::Zero()), m2.add_node(Vector3d::UnitX()), bm, s2);
     auto r = assemble(m2);
     REQUIRE_FALSE(r.ok());
-    CHECK(r.error().message.find("material 0: Young's modulus must be positive") != std::string::npos);
+    CHECK(r.error().message.find("material 0: Young's modulus must be positive") !=
+          std::string::npos);
   }
   SUBCASE("prescribed DOF on a node that does not exist") {
     const Index b = mesh.add_node(Vector3d::UnitX());

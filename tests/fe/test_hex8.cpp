@@ -15,13 +15,15 @@ namespace {
 
 // Adds a brick whose faces are given as two quads (bottom, top). If the node order gives a
 // negative Jacobian, the quads are reversed so the element is positively oriented.
-Index add_oriented_hex(Mesh& mesh, std::array<Index, 4> bottom, std::array<Index, 4> top,
-                       Index mat, Hex8Formulation f) {
-  std::array<Index, 8> n{bottom[0], bottom[1], bottom[2], bottom[3], top[0], top[1], top[2], top[3]};
+Index add_oriented_hex(Mesh& mesh, std::array<Index, 4> bottom, std::array<Index, 4> top, Index mat,
+                       Hex8Formulation f) {
+  std::array<Index, 8> n{bottom[0], bottom[1], bottom[2], bottom[3],
+                         top[0],    top[1],    top[2],    top[3]};
   Hex8Coordinates x;
   for (int a = 0; a < 8; ++a) x.col(a) = mesh.node(n[a]);
   const Matrix3d j = x * hex8::shape_derivatives(Vector3d::Zero()).transpose();
-  if (j.determinant() < 0) n = {bottom[0], bottom[3], bottom[2], bottom[1], top[0], top[3], top[2], top[1]};
+  if (j.determinant() < 0)
+    n = {bottom[0], bottom[3], bottom[2], bottom[1], top[0], top[3], top[2], top[1]};
   return mesh.add_hex8(n, mat, f);
 }
 
@@ -34,18 +36,18 @@ struct PatchTest {
     m.poissons_ratio = 0.25;
     m.density = 1.0;
     const Index mat = mesh.add_material(m);
-    const double inner[8][3] = {{0.249, 0.342, 0.192}, {0.826, 0.288, 0.288},
-                                {0.850, 0.649, 0.263}, {0.273, 0.750, 0.230},
-                                {0.320, 0.186, 0.643}, {0.677, 0.305, 0.683},
+    const double inner[8][3] = {{0.249, 0.342, 0.192}, {0.826, 0.288, 0.288}, {0.850, 0.649, 0.263},
+                                {0.273, 0.750, 0.230}, {0.320, 0.186, 0.643}, {0.677, 0.305, 0.683},
                                 {0.788, 0.693, 0.644}, {0.165, 0.745, 0.702}};
     for (int a = 0; a < 8; ++a)
-      mesh.add_node(Vector3d(hex8::node_xi[a][0] + 1, hex8::node_xi[a][1] + 1,
-                             hex8::node_xi[a][2] + 1) * 0.5);
+      mesh.add_node(
+          Vector3d(hex8::node_xi[a][0] + 1, hex8::node_xi[a][1] + 1, hex8::node_xi[a][2] + 1) *
+          0.5);
     for (auto& p : inner) mesh.add_node(Vector3d(p[0], p[1], p[2]));
     // Inner node i sits near outer corner i. The inner brick, then one brick per cube face.
     mesh.add_hex8({8, 9, 10, 11, 12, 13, 14, 15}, mat, f);
-    const std::array<std::array<Index, 4>, 6> faces{{{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                                      {3, 2, 6, 7}, {0, 3, 7, 4}, {1, 2, 6, 5}}};
+    const std::array<std::array<Index, 4>, 6> faces{
+        {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 2, 6, 7}, {0, 3, 7, 4}, {1, 2, 6, 5}}};
     for (const auto& face : faces)
       add_oriented_hex(mesh, face, {face[0] + 8, face[1] + 8, face[2] + 8, face[3] + 8}, mat, f);
     for (Index a = 0; a < 8; ++a) {
@@ -75,7 +77,8 @@ TEST_CASE("MacNeal-Harder patch test: constant strain and stress to machine prec
       Vector24d ue;
       for (int a = 0; a < 8; ++a)
         for (int c = 0; c < 3; ++c) ue(3 * a + c) = u(model->dofs.dof(h.nodes[a], c));
-      for (const Vector3d& xi : {Vector3d(0, 0, 0), Vector3d(0.577, -0.3, 0.9), Vector3d(-1, 1, -1)}) {
+      for (const Vector3d& xi :
+           {Vector3d(0, 0, 0), Vector3d(0.577, -0.3, 0.9), Vector3d(-1, 1, -1)}) {
         auto s = hex8_stress_operator(hex8_coordinates(pt.mesh, h), pt.mesh.material(0), f, xi,
                                       static_cast<Index>(e));
         REQUIRE(s.ok());
@@ -89,10 +92,12 @@ TEST_CASE("MacNeal-Harder patch test: constant strain and stress to machine prec
   }
 }
 
-TEST_CASE("slender cantilever, one brick through the thickness: incompatible modes bend, full "
-          "integration locks") {
-  // L = 10, h = b = 0.5 (L / h = 20), 10 x 1 x 1 bricks (aspect ratio 2), nu = 0: clamp at x = 0, tip shear P.
-  // Reference: Euler-Bernoulli P L^3 / (3 E I) plus Timoshenko shear P L / (k G A), k = 5/6.
+TEST_CASE(
+    "slender cantilever, one brick through the thickness: incompatible modes bend, full "
+    "integration locks") {
+  // L = 10, h = b = 0.5 (L / h = 20), 10 x 1 x 1 bricks (aspect ratio 2), nu = 0: clamp at x = 0,
+  // tip shear P. Reference: Euler-Bernoulli P L^3 / (3 E I) plus Timoshenko shear P L / (k G A), k
+  // = 5/6.
   const double l = 10, h = 0.5, e = 1e7, p = 10.0;
   const int ne = 10;  // element aspect ratio 2
   auto tip_deflection = [&](Hex8Formulation f, bool tip_moment) {

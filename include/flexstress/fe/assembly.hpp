@@ -30,14 +30,16 @@ void scatter(std::vector<Eigen::Triplet<double>>& trip, const ElementMatrix& ke,
 inline std::array<Index, 12> beam_dofs(const DofMap& dofs, const BeamElement& b) {
   std::array<Index, 12> d{};
   for (int n = 0; n < 2; ++n)
-    for (int c = 0; c < 6; ++c) d[static_cast<std::size_t>(6 * n + c)] = dofs.dof(b.nodes[static_cast<std::size_t>(n)], c);
+    for (int c = 0; c < 6; ++c)
+      d[static_cast<std::size_t>(6 * n + c)] = dofs.dof(b.nodes[static_cast<std::size_t>(n)], c);
   return d;
 }
 
 inline std::array<Index, 24> hex8_dofs(const DofMap& dofs, const Hex8Element& h) {
   std::array<Index, 24> d{};
   for (int n = 0; n < 8; ++n)
-    for (int c = 0; c < 3; ++c) d[static_cast<std::size_t>(3 * n + c)] = dofs.dof(h.nodes[static_cast<std::size_t>(n)], c);
+    for (int c = 0; c < 3; ++c)
+      d[static_cast<std::size_t>(3 * n + c)] = dofs.dof(h.nodes[static_cast<std::size_t>(n)], c);
   return d;
 }
 
@@ -142,8 +144,8 @@ inline Result<VectorXd> load_vector(const DofMap& dofs, const std::vector<NodalL
     const auto& l = loads[i];
     const Index d = dofs.dof(l.node, l.component);
     if (d < 0)
-      return make_error(ErrorCode::invalid_argument, "load ", i, " on node ", l.node,
-                        " component ", dof_component_name(l.component),
+      return make_error(ErrorCode::invalid_argument, "load ", i, " on node ", l.node, " component ",
+                        dof_component_name(l.component),
                         ": the node does not exist or lacks that DOF");
     if (!std::isfinite(l.value))
       return make_error(ErrorCode::invalid_argument, "load ", i, " on node ", l.node,

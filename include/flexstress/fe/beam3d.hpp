@@ -34,7 +34,8 @@ inline Matrix3d beam_local_axes(const Vector3d& x0, const Vector3d& x1,
                                 const Vector3d& orientation) {
   const Vector3d ex = (x1 - x0).normalized();
   Vector3d ref = orientation;
-  if (ref.squaredNorm() == 0.0) ref = std::abs(ex.y()) > 0.99 ? Vector3d::UnitZ() : Vector3d::UnitY();
+  if (ref.squaredNorm() == 0.0)
+    ref = std::abs(ex.y()) > 0.99 ? Vector3d::UnitZ() : Vector3d::UnitY();
   const Vector3d ey = (ref - ref.dot(ex) * ex).normalized();
   const Vector3d ez = ex.cross(ey);
   Matrix3d r;
@@ -91,8 +92,7 @@ inline Matrix12d beam_local_stiffness(const Material& mat, const BeamSection& s,
 
 /// Local-axes interpolation at xi in [0, 1]: centre-line displacement n_u (3x12) and section
 /// rotation n_r (3x12), both in local axes, acting on the local element DOF vector.
-inline void beam_local_interpolation(double xi, double length, Matrix3x12d& n_u,
-                                     Matrix3x12d& n_r) {
+inline void beam_local_interpolation(double xi, double length, Matrix3x12d& n_u, Matrix3x12d& n_r) {
   const double l = length, x2 = xi * xi, x3 = x2 * xi;
   const double h1 = 1 - 3 * x2 + 2 * x3, h2 = l * (xi - 2 * x2 + x3), h3 = 3 * x2 - 2 * x3,
                h4 = l * (-x2 + x3);

@@ -18,8 +18,8 @@ struct BeamSection {
   double iy = 0.0;                ///< integral z^2 dA (bending in the x-z plane)
   double iz = 0.0;                ///< integral y^2 dA (bending in the x-y plane)
   double torsion_constant = 0.0;  ///< St. Venant J
-  double shear_area_y = 0.0;      ///< Shear area for forces along y (Timoshenko); 0 = rigid in shear
-  double shear_area_z = 0.0;      ///< Shear area for forces along z
+  double shear_area_y = 0.0;  ///< Shear area for forces along y (Timoshenko); 0 = rigid in shear
+  double shear_area_z = 0.0;  ///< Shear area for forces along z
   /// Outer half-dimensions, for fibre stresses at the section's extreme points (0 if unknown).
   double half_height_y = 0.0;
   double half_width_z = 0.0;

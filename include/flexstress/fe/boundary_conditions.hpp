@@ -8,8 +8,8 @@
 namespace flexstress::fe {
 
 /// Component selectors beyond a single component 0..5.
-inline constexpr int all_components = -1;           ///< every DOF the node has
-inline constexpr int translation_components = -2;   ///< ux, uy, uz
+inline constexpr int all_components = -1;          ///< every DOF the node has
+inline constexpr int translation_components = -2;  ///< ux, uy, uz
 
 /// One prescribed displacement: node, component (0..5, or a selector above), value.
 struct PrescribedDisplacement {

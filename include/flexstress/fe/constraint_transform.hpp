@@ -65,7 +65,9 @@ class ConstraintTransform {
                             " is part of a loop of rigid links (its master node ",
                             mesh.rigid_links()[l].master,
                             " is, through a chain of links, a slave of itself)");
-        node = mesh.rigid_links()[static_cast<std::size_t>(slave_of[static_cast<std::size_t>(node)])].master;
+        node =
+            mesh.rigid_links()[static_cast<std::size_t>(slave_of[static_cast<std::size_t>(node)])]
+                .master;
       }
     }
     for (Index node = 0; node < mesh.num_nodes(); ++node)
@@ -88,8 +90,7 @@ class ConstraintTransform {
                           slave_of[static_cast<std::size_t>(node)],
                           " drives; prescribe the link's master instead");
       if (k == DofKind::prescribed)
-        return make_error(ErrorCode::invalid_argument, dofs.describe(d),
-                          " is prescribed twice");
+        return make_error(ErrorCode::invalid_argument, dofs.describe(d), " is prescribed twice");
       k = DofKind::prescribed;
       ct.column_[static_cast<std::size_t>(d)] = static_cast<Index>(ct.prescribed_.size());
       ct.prescribed_.push_back(d);

@@ -62,8 +62,7 @@ class DofMap {
   /// Global DOF index of a node's component (0..5 = ux, uy, uz, rx, ry, rz), or -1 if the node
   /// does not have that component.
   Index dof(Index node, int component) const {
-    if (node < 0 || node >= num_nodes() || component < 0 ||
-        component >= num_node_dofs(node))
+    if (node < 0 || node >= num_nodes() || component < 0 || component >= num_node_dofs(node))
       return -1;
     return first_[static_cast<std::size_t>(node)] + component;
   }

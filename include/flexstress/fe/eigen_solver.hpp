@@ -59,8 +59,8 @@ inline double default_shift(const SparseMatrixd& k, const SparseMatrixd& m) {
   return tm > 0.0 ? 1e-8 * tk / tm : 1e-8 * tk;
 }
 
-inline Result<EigenSolution> eigen_dense(const SparseMatrixd& k, const SparseMatrixd& m,
-                                         int p, double sigma) {
+inline Result<EigenSolution> eigen_dense(const SparseMatrixd& k, const SparseMatrixd& m, int p,
+                                         double sigma) {
   const MatrixXd kd(k), md(m);
   const MatrixXd b = kd + sigma * md;
   Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> es(md, b, Eigen::ComputeEigenvectors);
@@ -130,8 +130,8 @@ inline Result<EigenSolution> eigen_subspace(const SparseMatrixd& k, const Sparse
   for (int it = 0; it < opt.max_iterations; ++it) {
     const MatrixXd y = m * x;
     const MatrixXd xbar = f.solve(y);
-    const MatrixXd ks = xbar.transpose() * y;                // X^T (K + sigma M) X
-    const MatrixXd ms = xbar.transpose() * (m * xbar);       // X^T M X
+    const MatrixXd ks = xbar.transpose() * y;           // X^T (K + sigma M) X
+    const MatrixXd ms = xbar.transpose() * (m * xbar);  // X^T M X
     Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> es(
         0.5 * (ks + ks.transpose()), 0.5 * (ms + ms.transpose()), Eigen::ComputeEigenvectors);
     if (es.info() != Eigen::Success)
@@ -142,7 +142,8 @@ inline Result<EigenSolution> eigen_subspace(const SparseMatrixd& k, const Sparse
     const VectorXd lambda = es.eigenvalues();
     bool converged = true;
     for (int j = 0; j < p; ++j)
-      if (std::abs(lambda(j) - lambda_old(j)) > opt.tolerance * std::abs(lambda(j))) converged = false;
+      if (std::abs(lambda(j) - lambda_old(j)) > opt.tolerance * std::abs(lambda(j)))
+        converged = false;
     lambda_old = lambda;
     if (converged) {
       EigenSolution s;
@@ -164,8 +165,9 @@ inline Result<EigenSolution> eigen_subspace(const SparseMatrixd& k, const Sparse
       return s;
     }
   }
-  return make_error(ErrorCode::not_converged, "eigen solve: subspace iteration did not converge in ",
-                    opt.max_iterations, " iterations");
+  return make_error(ErrorCode::not_converged,
+                    "eigen solve: subspace iteration did not converge in ", opt.max_iterations,
+                    " iterations");
 }
 
 }  // namespace detail

@@ -16,8 +16,8 @@
 #include <array>
 #include <cmath>
 
-#include <Eigen/Core>
 #include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <Eigen/LU>
 
 #include "flexstress/core/status.hpp"
@@ -32,7 +32,7 @@ using Matrix24d = Eigen::Matrix<double, 24, 24>;
 using Vector24d = Eigen::Matrix<double, 24, 1>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
-using Hex8Coordinates = Eigen::Matrix<double, 3, 8>;   ///< columns: node positions
+using Hex8Coordinates = Eigen::Matrix<double, 3, 8>;      ///< columns: node positions
 using Hex8StressOperator = Eigen::Matrix<double, 6, 24>;  ///< sigma = S u_e
 
 namespace hex8 {
@@ -213,8 +213,8 @@ inline Result<Matrix24d> hex8_mass(const Hex8Coordinates& x, double density, Mas
 /// Scalar (per-direction) consistent mass matrix rho integral N_a N_b dV (8 x 8): the full mass
 /// is this matrix times the 3x3 identity. Used for inertia integrals (nodal-based FFRF).
 inline Result<Eigen::Matrix<double, 8, 8>> hex8_scalar_mass(const Hex8Coordinates& x,
-                                                           double density, MassLumping lumping,
-                                                           Index element_id) {
+                                                            double density, MassLumping lumping,
+                                                            Index element_id) {
   auto full = hex8_mass(x, density, lumping, element_id);
   if (!full) return full.error();
   Eigen::Matrix<double, 8, 8> m;
@@ -238,9 +238,8 @@ inline Result<Hex8StressOperator> hex8_stress_operator(const Hex8Coordinates& x,
   if (!(det > 0.0))
     return make_error(ErrorCode::degenerate_element, "hex8 element ", element_id,
                       ": Jacobian determinant ", det, " at the stress point is not positive");
-  const Eigen::Matrix<double, 6, 24> b =
-      hex8::strain_matrix<8>(Eigen::Matrix<double, 3, 8>(j.inverse().transpose() *
-                                                         hex8::shape_derivatives(xi)));
+  const Eigen::Matrix<double, 6, 24> b = hex8::strain_matrix<8>(
+      Eigen::Matrix<double, 3, 8>(j.inverse().transpose() * hex8::shape_derivatives(xi)));
   if (formulation == Hex8Formulation::full_integration) return Hex8StressOperator(d * b);
   Matrix24d kuu;
   Eigen::Matrix<double, 24, 9> kua;

@@ -20,14 +20,16 @@ struct Material {
 };
 
 /// Structural steel as in the paper's Table 2 (E = 210 GPa, nu = 0.3, rho = 7850 kg/m^3).
-inline Material steel() { return Material{210e9, 0.3, 7850.0}; }
+inline Material steel() {
+  return Material{210e9, 0.3, 7850.0};
+}
 
 /// Checks that E > 0, -1 < nu < 0.5, rho >= 0 and all are finite. `where` names the material
 /// in the message (e.g. "material 2").
 inline Status validate(const Material& m, const std::string& where) {
   if (!std::isfinite(m.youngs_modulus) || !(m.youngs_modulus > 0.0))
-    return make_error(ErrorCode::invalid_argument, where, ": Young's modulus must be positive and finite, got ",
-                      m.youngs_modulus);
+    return make_error(ErrorCode::invalid_argument, where,
+                      ": Young's modulus must be positive and finite, got ", m.youngs_modulus);
   if (!std::isfinite(m.poissons_ratio) || !(m.poissons_ratio > -1.0) || !(m.poissons_ratio < 0.5))
     return make_error(ErrorCode::invalid_argument, where,
                       ": Poisson's ratio must lie in (-1, 0.5), got ", m.poissons_ratio);

@@ -168,8 +168,8 @@ class Mesh {
       if (b.theory == BeamTheory::timoshenko) {
         const BeamSection& s = section(b.section);
         if (!(s.shear_area_y > 0.0) || !(s.shear_area_z > 0.0))
-          return make_error(ErrorCode::invalid_argument, "beam ", e,
-                            " is Timoshenko but section ", b.section, " has no shear areas");
+          return make_error(ErrorCode::invalid_argument, "beam ", e, " is Timoshenko but section ",
+                            b.section, " has no shear areas");
       }
     }
     for (std::size_t e = 0; e < hexes_.size(); ++e) {
@@ -181,8 +181,8 @@ class Mesh {
       for (int a = 0; a < 8; ++a)
         for (int b = a + 1; b < 8; ++b)
           if (h.nodes[static_cast<std::size_t>(a)] == h.nodes[static_cast<std::size_t>(b)])
-            return make_error(ErrorCode::degenerate_element, "hex8 element ", e,
-                              " uses node ", h.nodes[static_cast<std::size_t>(a)], " twice");
+            return make_error(ErrorCode::degenerate_element, "hex8 element ", e, " uses node ",
+                              h.nodes[static_cast<std::size_t>(a)], " twice");
       if (h.material < 0 || h.material >= static_cast<Index>(materials_.size()))
         return make_error(ErrorCode::invalid_mesh, "hex8 element ", e, " refers to material ",
                           h.material, ", which does not exist");
@@ -199,8 +199,8 @@ class Mesh {
     for (std::size_t i = 0; i < rigid_links_.size(); ++i) {
       const RigidLink& l = rigid_links_[i];
       if (bad_node(l.master))
-        return make_error(ErrorCode::invalid_mesh, "rigid link ", i, " has master node ",
-                          l.master, ", which does not exist");
+        return make_error(ErrorCode::invalid_mesh, "rigid link ", i, " has master node ", l.master,
+                          ", which does not exist");
       if (l.slaves.empty())
         return make_error(ErrorCode::invalid_mesh, "rigid link ", i, " has no slave nodes");
       for (Index s : l.slaves) {

@@ -2,6 +2,7 @@
 // small rotations about axes through a point c: u = e x (x - c), theta = e.
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include <Eigen/Core>
@@ -47,6 +48,16 @@ inline std::string rigid_mode_name(int j) {
                                  "translation along z", "rotation about x",
                                  "rotation about y",    "rotation about z"};
   return names[j];
+}
+
+/// Names the dominant components of a combination v (6) of the rigid modes above, e.g.
+/// "rotation about z" or "translation along y + rotation about z".
+inline std::string describe_rigid_motion(const Eigen::Ref<const VectorXd>& v) {
+  const double vmax = v.cwiseAbs().maxCoeff();
+  std::string combo;
+  for (int j = 0; j < 6; ++j)
+    if (std::abs(v(j)) > 0.2 * vmax) combo += (combo.empty() ? "" : " + ") + rigid_mode_name(j);
+  return combo;
 }
 
 }  // namespace flexstress::fe

@@ -50,12 +50,7 @@ inline Error explain_singular_stiffness(const Mesh& mesh, const AssembledModel& 
         if (eig.eigenvalues()(k) > 1e-9) continue;
         const VectorXd v = eig.eigenvectors().col(k);
         if ((r * v).norm() < 1e-12 * (1.0 + v.norm())) continue;  // no motion at free DOFs
-        // Name the dominant rigid-motion components of this null vector.
-        const double vmax = v.cwiseAbs().maxCoeff();
-        std::string combo;
-        for (int j = 0; j < 6; ++j)
-          if (std::abs(v(j)) > 0.2 * vmax) combo += (combo.empty() ? "" : " + ") + rigid_mode_name(j);
-        free_motions += (free_motions.empty() ? "" : "; ") + combo;
+        free_motions += (free_motions.empty() ? "" : "; ") + describe_rigid_motion(v);
       }
     }
   }
@@ -64,9 +59,10 @@ inline Error explain_singular_stiffness(const Mesh& mesh, const AssembledModel& 
                       "the stiffness matrix is singular after constraints: the supports leave "
                       "these rigid-body motions free: ",
                       free_motions);
-  std::string where = bad_free_dof >= 0
-                          ? model.dofs.describe(model.constraints.free_dofs()[static_cast<std::size_t>(bad_free_dof)])
-                          : std::string("an unknown DOF");
+  std::string where =
+      bad_free_dof >= 0 ? model.dofs.describe(
+                              model.constraints.free_dofs()[static_cast<std::size_t>(bad_free_dof)])
+                        : std::string("an unknown DOF");
   return make_error(ErrorCode::singular_matrix,
                     "the stiffness matrix is singular after constraints: a mechanism at ", where,
                     " (no stiffness against that motion; check element connectivity and "
@@ -113,8 +109,8 @@ class StaticSolver {
   /// All-DOF displacements for an all-DOF load and prescribed values.
   VectorXd solve(const VectorXd& f_all, const VectorXd& prescribed_values) const {
     const auto& ct = model_->constraints;
-    const VectorXd rhs = ct.free_to_all().transpose() * f_all -
-                         model_->stiffness_prescribed * prescribed_values;
+    const VectorXd rhs =
+        ct.free_to_all().transpose() * f_all - model_->stiffness_prescribed * prescribed_values;
     return ct.expand(ldlt_->solve(rhs), prescribed_values);
   }
   /// All-DOF displacements with the prescribed values of the boundary conditions.

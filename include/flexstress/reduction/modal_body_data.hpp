@@ -1,0 +1,144 @@
+// Modal body data: everything an FFRF body needs from a reduced FE model (Model side,
+// immutable, double precision, runtime mode count). Built once by reduce(); the dynamics layer
+// turns it into a compile-time-sized body (FFRFBody<NModes>) by truncation and cast.
+//
+// Frames: the body frame is the mesh frame (x, y, z of the nodes as given); the frame origin is
+// the mesh origin, not necessarily the centre of mass (the FFRF equations keep the general
+// first-moment terms).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/status.hpp"
+#include "flexstress/fe/mass_options.hpp"
+#include "flexstress/reduction/component_modes.hpp"
+#include "flexstress/reduction/inertia_integrals.hpp"
+#include "flexstress/reduction/orthonormalize.hpp"
+
+namespace flexstress::reduction {
+
+struct ModalBodyData {
+  ReductionMethod method = ReductionMethod::craig_bampton;
+  fe::MassOptions mass_options;
+  Index num_modes = 0;
+
+  // Inertia integrals (body frame): index 0 = undeformed position, 1..n = modes.
+  InertiaIntegrals inertia;
+
+  VectorXd eigenvalues;     ///< omega^2 of the deformation modes, ascending
+  VectorXd damping_ratios;  ///< modal damping ratio zeta per mode (0 = undamped)
+
+  // Mode shapes at every node of the mesh (body frame): rows 3i..3i+2 belong to node i.
+  // Rotations are zero at nodes without rotational DOFs (node_has_rotation == 0).
+  std::vector<Vector3d> node_positions;
+  std::vector<unsigned char> node_has_rotation;
+  MatrixXd phi_translation;  ///< 3 n_nodes x n
+  MatrixXd phi_rotation;     ///< 3 n_nodes x n
+
+  std::vector<Index> interface_nodes;
+  double mass_residual = 0.0;       ///< || Phi^T M Phi - I ||_max of the orthonormalization
+  double stiffness_residual = 0.0;  ///< || Phi^T K Phi - diag ||_max / lambda_max
+
+  double mass() const { return inertia.mass; }
+  /// Centre of mass of the undeformed body, body frame.
+  Vector3d center_of_mass() const { return inertia.first[0] / inertia.mass; }
+  /// Inertia tensor of the undeformed body about the frame origin: tr(L00) 1 - L00.
+  Matrix3d inertia_about_origin() const {
+    const Matrix3d& l = inertia.lambda(0, 0);
+    return l.trace() * Matrix3d::Identity() - l;
+  }
+  Index num_nodes() const { return static_cast<Index>(node_positions.size()); }
+  /// Translational mode shapes (3 x n) at a node.
+  auto phi_r(Index node) const { return phi_translation.middleRows<3>(3 * node); }
+  /// Rotational mode shapes (3 x n) at a node.
+  auto phi_theta(Index node) const { return phi_rotation.middleRows<3>(3 * node); }
+
+  /// The same body with only the lowest k modes (k <= num_modes). Every invariant of the
+  /// truncated body is a sub-block of this one, so nothing is recomputed.
+  Result<ModalBodyData> truncated(Index k) const {
+    if (k < 0 || k > num_modes)
+      return make_error(ErrorCode::size_mismatch, "truncation to ", k, " modes: the body has ",
+                        num_modes);
+    ModalBodyData t = *this;
+    t.num_modes = k;
+    t.eigenvalues = eigenvalues.head(k);
+    t.damping_ratios = damping_ratios.head(k);
+    t.phi_translation = phi_translation.leftCols(k);
+    t.phi_rotation = phi_rotation.leftCols(k);
+    t.inertia.num_modes = k;
+    t.inertia.first.resize(static_cast<std::size_t>(k + 1));
+    t.inertia.second.assign(static_cast<std::size_t>((k + 1) * (k + 1)), Matrix3d::Zero());
+    for (Index a = 0; a <= k; ++a)
+      for (Index b = 0; b <= k; ++b) t.inertia.lambda(a, b) = inertia.lambda(a, b);
+    return t;
+  }
+};
+
+/// What reduce() should do.
+struct ReductionSpec {
+  ReductionMethod method = ReductionMethod::craig_bampton;
+  std::vector<InterfaceNode> interface;
+  ModeSelection dynamic_modes;  ///< fixed-interface (CB) or free-free (CC) modes
+  /// Deformation modes kept after orthonormalization (the lowest ones); < 0 keeps all
+  /// (6k - 6 + n for Craig-Bampton with k six-DOF interface nodes).
+  Index keep_modes = -1;
+  fe::MassOptions mass;
+  fe::EigenOptions eigen;
+  double damping_ratio = 0.0;  ///< the same modal damping ratio for every mode
+};
+
+/// From a component-mode basis to modal body data.
+inline Result<ModalBodyData> make_modal_body(const fe::Mesh& mesh, const ComponentModes& cm,
+                                             const ReductionSpec& spec) {
+  auto deformation = orthonormalize(mesh, cm);
+  if (!deformation) return deformation.error();
+  const Index available = deformation->eigenvalues.size();
+  const Index k = spec.keep_modes < 0 ? available : spec.keep_modes;
+  if (k > available)
+    return make_error(ErrorCode::size_mismatch, "asked for ", k,
+                      " deformation modes but the reduction basis has only ", available,
+                      " (Craig-Bampton gives 6k - 6 + n for k six-DOF interface nodes and n "
+                      "fixed-interface modes)");
+  const MatrixXd modes = deformation->modes.leftCols(k);
+  auto integrals = inertia_integrals(mesh, cm.model.dofs, modes, spec.mass);
+  if (!integrals) return integrals.error();
+  ModalBodyData d;
+  d.method = cm.method;
+  d.mass_options = spec.mass;
+  d.num_modes = k;
+  d.inertia = std::move(*integrals);
+  d.eigenvalues = deformation->eigenvalues.head(k);
+  d.damping_ratios = VectorXd::Constant(k, spec.damping_ratio);
+  d.mass_residual = deformation->mass_residual;
+  d.stiffness_residual = deformation->stiffness_residual;
+  const Index nn = mesh.num_nodes();
+  d.phi_translation = MatrixXd::Zero(3 * nn, k);
+  d.phi_rotation = MatrixXd::Zero(3 * nn, k);
+  for (Index n = 0; n < nn; ++n) {
+    d.node_positions.push_back(mesh.node(n));
+    d.node_has_rotation.push_back(cm.model.dofs.has_rotations(n) ? 1 : 0);
+    for (int c = 0; c < cm.model.dofs.num_node_dofs(n); ++c)
+      (c < 3 ? d.phi_translation : d.phi_rotation).row(3 * n + c % 3) =
+          modes.row(cm.model.dofs.dof(n, c));
+  }
+  for (const auto& in : spec.interface) d.interface_nodes.push_back(in.node);
+  return d;
+}
+
+/// The whole precompute: component modes (Craig-Bampton or Craig-Chang), orthonormalization,
+/// inertia integrals, mode shapes at every node.
+inline Result<ModalBodyData> reduce(const fe::Mesh& mesh, const ReductionSpec& spec) {
+  if (!(spec.damping_ratio >= 0.0) || !(spec.damping_ratio < 1.0))
+    return make_error(ErrorCode::invalid_argument, "modal damping ratio must lie in [0, 1), got ",
+                      spec.damping_ratio);
+  auto cm = spec.method == ReductionMethod::craig_bampton
+                ? craig_bampton(mesh, spec.interface, spec.dynamic_modes, spec.mass, spec.eigen)
+                : craig_chang(mesh, spec.interface, spec.dynamic_modes, spec.mass, spec.eigen);
+  if (!cm) return cm.error();
+  return make_modal_body(mesh, *cm, spec);
+}
+
+}  // namespace flexstress::reduction

@@ -37,36 +37,59 @@ T abs_diff(T a, T b) {
   return a > b ? a - b : b - a;
 }
 
-/// ASTM E1049-85 section 5.4.4 on reversals r[0..n): emit(from, to, full) for every count.
-/// X is the most recent range, Y the one before it, S the starting point (the first point of
-/// the stack, moved forward by step 5).
-template <class T, class Emit>
-void astm_three_point(const T* r, std::size_t n, Emit&& emit) {
-  std::vector<T> s;  // stack of points not yet discarded; s[base] is S
-  s.reserve(n);
-  std::size_t base = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    s.push_back(r[i]);  // step 1: read the next peak or valley
+/// ASTM E1049-85 section 5.4.4, fed one reversal at a time: push() runs steps 1-5 for the new
+/// point, finish() runs step 6. emit(from, to, full) receives every count. X is the most recent
+/// range, Y the one before it, S the starting point (the first live point of the stack, moved
+/// forward by step 5).
+template <class T>
+class AstmThreePoint {
+ public:
+  template <class Emit>
+  void push(T r, Emit&& emit) {
+    s_.push_back(r);  // step 1: read the next peak or valley
     // Step 2: while there are at least three points, form X and Y.
-    while (s.size() - base >= 3) {
-      const std::size_t e = s.size();
-      const T x = abs_diff(s[e - 1], s[e - 2]);
-      const T y = abs_diff(s[e - 2], s[e - 3]);
+    while (s_.size() - base_ >= 3) {
+      const std::size_t e = s_.size();
+      const T x = abs_diff(s_[e - 1], s_[e - 2]);
+      const T y = abs_diff(s_[e - 2], s_[e - 3]);
       if (x < y) break;  // step 3: X < Y, read on
-      if (e - 3 == base) {
+      if (e - 3 == base_) {
         // Step 5: Y contains S; count Y as one half cycle, discard its first point, move S.
-        emit(s[base], s[base + 1], false);
-        ++base;
+        emit(s_[base_], s_[base_ + 1], false);
+        ++base_;
       } else {
         // Step 4: count Y as one cycle and discard its peak and valley.
-        emit(s[e - 3], s[e - 2], true);
-        s[e - 3] = s[e - 1];
-        s.resize(e - 2);
+        emit(s_[e - 3], s_[e - 2], true);
+        s_[e - 3] = s_[e - 1];
+        s_.resize(e - 2);
       }
     }
+    // Drop discarded points from the front once they are the larger part (amortized O(1)).
+    if (base_ >= 64 && base_ >= s_.size() / 2) {
+      s_.erase(s_.begin(), s_.begin() + static_cast<std::ptrdiff_t>(base_));
+      base_ = 0;
+    }
   }
-  // Step 6: every range not yet counted is one half cycle.
-  for (std::size_t k = base; k + 1 < s.size(); ++k) emit(s[k], s[k + 1], false);
+
+  template <class Emit>
+  void finish(Emit&& emit) {
+    // Step 6: every range not yet counted is one half cycle.
+    for (std::size_t k = base_; k + 1 < s_.size(); ++k) emit(s_[k], s_[k + 1], false);
+    s_.clear();
+    base_ = 0;
+  }
+
+ private:
+  std::vector<T> s_;  // points not yet discarded; s_[base_] is S
+  std::size_t base_ = 0;
+};
+
+/// ASTM E1049-85 section 5.4.4 on reversals r[0..n).
+template <class T, class Emit>
+void astm_three_point(const T* r, std::size_t n, Emit&& emit) {
+  AstmThreePoint<T> counter;
+  for (std::size_t i = 0; i < n; ++i) counter.push(r[i], emit);
+  counter.finish(emit);
 }
 
 /// ASTM E1049-85 section 5.4.5 on one block r[0..n) of a repeating history: emit(from, to,
@@ -126,6 +149,33 @@ std::vector<Cycle<Scalar>> count_reversals(const T* r, std::size_t n, CycleClosu
   return cycles;
 }
 
+/// Counts a history of n samples, sample(i) giving sample i as T (a stress, or a class index),
+/// with reversal gate `gate` and the given closure. For half cycles the reversals go straight
+/// into the three-point counter, without being stored; a repeating block needs them all.
+template <class Scalar, class T, class Sample, class Value>
+std::vector<Cycle<Scalar>> count_history(std::size_t n, Sample&& sample, T gate,
+                                         CycleClosure closure, Value&& value) {
+  std::vector<Cycle<Scalar>> cycles;
+  auto add = [&](T from, T to, bool full) {
+    cycles.push_back({value(from), value(to), full ? Scalar(1) : Scalar(0.5)});
+  };
+  ReversalFilter<T> filter(gate);
+  if (closure == CycleClosure::half_cycles) {
+    AstmThreePoint<T> counter;
+    auto feed = [&](T r) { counter.push(r, add); };
+    for (std::size_t i = 0; i < n; ++i) filter.push(sample(i), feed);
+    filter.finish(feed);
+    counter.finish(add);
+  } else {
+    std::vector<T> r;
+    auto keep = [&r](T v) { r.push_back(v); };
+    for (std::size_t i = 0; i < n; ++i) filter.push(sample(i), keep);
+    filter.finish(keep);
+    astm_repeating(r.data(), r.size(), add);
+  }
+  return cycles;
+}
+
 /// Checks a reversal sequence: finite values that strictly alternate in direction.
 template <class Scalar>
 Status check_reversals(const std::vector<Scalar>& r) {
@@ -178,10 +228,11 @@ struct CountOptions {
 template <class Scalar>
 Result<std::vector<Cycle<Scalar>>> count_cycles(const Scalar* samples, std::size_t n,
                                                 const CountOptions<Scalar>& options = {}) {
-  Result<std::vector<Scalar>> r = extract_reversals(samples, n, options.gate);
-  if (!r) return r.error();
-  return detail::count_reversals<Scalar>(r->data(), r->size(), options.closure,
-                                         [](Scalar v) { return v; });
+  if (Status s = detail::check_gate(options.gate); !s) return s.error();
+  if (Status s = detail::check_history(samples, n, "stress history"); !s) return s.error();
+  return detail::count_history<Scalar>(
+      n, [samples](std::size_t i) { return samples[i]; }, options.gate, options.closure,
+      [](Scalar v) { return v; });
 }
 
 /// Overload for a std::vector history.
@@ -206,13 +257,9 @@ Result<std::vector<Cycle<Scalar>>> count_cycles_classed(
   if (Status s = detail::check_history(samples, n, "stress history"); !s) return s.error();
   if (Status s = detail::check_in_grid(samples, n, grid, "stress history"); !s) return s.error();
   // Reversals on class indices: exact integer comparisons, as in the streaming counter.
-  std::vector<int> r;
-  ReversalFilter<int> filter(gate_classes);
-  auto keep = [&r](int v) { r.push_back(v); };
-  for (std::size_t i = 0; i < n; ++i) filter.push(grid.index(samples[i]), keep);
-  filter.finish(keep);
-  return detail::count_reversals<Scalar>(r.data(), r.size(), closure,
-                                         [&grid](int i) { return grid.center(i); });
+  return detail::count_history<Scalar>(
+      n, [samples, &grid](std::size_t i) { return grid.index(samples[i]); }, gate_classes, closure,
+      [&grid](int i) { return grid.center(i); });
 }
 
 /// Overload for a std::vector history.

@@ -41,8 +41,9 @@ TEST_CASE_TEMPLATE("ASTM E1049-85 5.4.4 example gives the published half-cycle t
   REQUIRE(cycles.ok());
   const std::map<T, T> expected = {{3, 0.5}, {4, 1.5}, {6, 0.5}, {8, 1.0}, {9, 0.5}};
   CHECK(count_by_range(*cycles) == expected);
-  // The order of events in the standard's walk-through of Fig. 6 (a)-(f): half cycle -2..1,
-  // half cycle 1..-3, full cycle -1..3, half cycle -3..5, then the residue 5..-4, -4..4, 4..-2.
+  // The order of events, worked out by hand from the steps of 5.4.4: half cycle -2..1 (step 5),
+  // half cycle 1..-3 (step 5), cycle -1..3 (step 4), half cycle -3..5 (step 5), then the
+  // residue 5..-4, -4..4, 4..-2 (step 6).
   const std::vector<std::pair<std::pair<T, T>, T>> events = {
       {{-2, 1}, 0.5}, {{1, -3}, 0.5}, {{-1, 3}, 1.0}, {{-3, 5}, 0.5},
       {{5, -4}, 0.5}, {{-4, 4}, 0.5}, {{4, -2}, 0.5}};

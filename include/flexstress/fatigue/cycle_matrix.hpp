@@ -68,10 +68,14 @@ class Bins {
   /// Centre of bin i.
   Scalar center(int i) const { return (edge(i) + edge(i + 1)) / Scalar(2); }
 
-  /// Bin holding x, or -1 when x is outside [e_0, e_n] (or NaN).
+  /// Bin holding x, or -1 when x is outside [e_0, e_n] (or NaN). Binary search on the stored
+  /// edges, so a value exactly on an edge always lands in the bin that starts there, whatever
+  /// rounding produced the edges.
   int find(Scalar x) const {
+    // The negated form also sends NaN to "outside".
     if (!(x >= edges_.front() && x <= edges_.back())) return -1;
-    if (x == edges_.back()) return size() - 1;
+    if (x == edges_.back()) return size() - 1;  // the last bin is closed on the right
+    // First edge greater than x; the bin starts one edge before it.
     const auto it = std::upper_bound(edges_.begin(), edges_.end(), x);
     return static_cast<int>(it - edges_.begin()) - 1;
   }
@@ -93,6 +97,7 @@ class RangeMeanMatrix {
 
   /// Adds a cycle (its count) to its cell, or to unbinned(). Never allocates.
   void add(const Cycle<Scalar>& c) {
+    // Row from the range, column from the mean; half cycles add 0.5.
     const int i = range_bins_.find(c.range());
     const int j = mean_bins_.find(c.mean());
     if (i < 0 || j < 0) {
@@ -113,6 +118,7 @@ class RangeMeanMatrix {
   const Bins<Scalar>& mean_bins() const noexcept { return mean_bins_; }
 
  private:
+  // The count matrix is allocated here, once; add() only writes into it.
   RangeMeanMatrix(Bins<Scalar> range_bins, Bins<Scalar> mean_bins)
       : range_bins_(std::move(range_bins)),
         mean_bins_(std::move(mean_bins)),
@@ -135,6 +141,7 @@ class FromToMatrix {
 
   /// Adds a cycle (its count) to its cell, or to unbinned(). Never allocates.
   void add(const Cycle<Scalar>& c) {
+    // Row from the first reversal, column from the second: the direction is kept.
     const int i = bins_.find(c.from);
     const int j = bins_.find(c.to);
     if (i < 0 || j < 0) {

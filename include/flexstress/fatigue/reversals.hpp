@@ -131,8 +131,9 @@ const char* non_finite_name(Scalar x) {
 /// Checks a history: not empty, every sample finite. The message names the first bad sample.
 template <class Scalar>
 Status check_history(const Scalar* samples, std::size_t n, const char* what) {
-  if (n == 0 || samples == nullptr)
-    return make_error(ErrorCode::invalid_argument, what, " is empty");
+  if (n == 0) return make_error(ErrorCode::invalid_argument, what, " is empty");
+  if (samples == nullptr)
+    return make_error(ErrorCode::invalid_argument, what, ": null data pointer for ", n, " samples");
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(samples[i]))
       return make_error(ErrorCode::invalid_argument, what, ": sample ", i, " is ",

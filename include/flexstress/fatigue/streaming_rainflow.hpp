@@ -42,8 +42,8 @@ namespace flexstress::fatigue {
 /// Class-bin four-point rainflow counter with a residue of at most 2 NClasses reversals.
 ///
 /// Sink: any callable `sink(const Cycle<Scalar>&)`; it receives every counted cycle (from, to at
-/// class centres). The counter itself stores no cycle list: feed a DamageAccumulator-style sink,
-/// a RangeMeanMatrix / FromToMatrix (`add`), or your own.
+/// class centres). The counter itself stores no cycle list: StreamingDamage passes a Miner sum,
+/// a RangeMeanMatrix or FromToMatrix is a sink as it is, or pass your own.
 template <class Scalar, int NClasses>
 class StreamingRainflow {
   static_assert(NClasses >= 2, "StreamingRainflow needs at least 2 classes");

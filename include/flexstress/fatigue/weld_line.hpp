@@ -41,10 +41,13 @@ struct WeldLineDamage {
 };
 
 namespace detail {
+/// Index and value of the largest entry of a damage vector (first one on ties). Written out
+/// rather than maxCoeff so that the tie rule is part of the contract.
 template <class Scalar, class Derived>
 CriticalLocation<Scalar> find_critical(const Eigen::MatrixBase<Derived>& damage) {
   CriticalLocation<Scalar> c;
   for (Eigen::Index i = 0; i < damage.size(); ++i) {
+    // Strictly greater: an equal damage further along the line does not move the location.
     if (i == 0 || damage(i) > c.damage) {
       c.index = i;
       c.damage = damage(i);
@@ -64,6 +67,7 @@ Result<WeldLineDamage<Scalar>> weld_line_damage(
     const DamageModel<Scalar>& model, const CountOptions<Scalar>& options = {}) {
   if (histories.cols() == 0)
     return make_error(ErrorCode::invalid_argument, "weld line has no hot spots");
+  // Each hot spot is an independent history: count and sum its damage, keeping the first error.
   WeldLineDamage<Scalar> out;
   out.damage.resize(histories.cols());
   for (Eigen::Index j = 0; j < histories.cols(); ++j) {
@@ -106,11 +110,14 @@ class StreamingWeldLine {
   StepStatus push(const Eigen::DenseBase<Derived>& stresses) {
     FLEXSTRESS_ASSERT(stresses.size() == hot_spots(),
                       "StreamingWeldLine::push: one stress per hot spot expected");
+    // Check every stress first, so that a refused step leaves every hot spot unchanged (all
+    // meters share one grid).
     const ClassGrid<Scalar>& grid = meters_.front().counter().grid();
     for (Eigen::Index j = 0; j < stresses.size(); ++j) {
       if (!std::isfinite(stresses(j))) return StepStatus::invalid_input;
       if (!grid.contains(stresses(j))) return StepStatus::capacity_exceeded;
     }
+    // All accepted: push them (each push can only succeed now).
     for (Eigen::Index j = 0; j < stresses.size(); ++j) {
       const StepStatus s = meters_[static_cast<std::size_t>(j)].push(stresses(j));
       FLEXSTRESS_ASSERT(s == StepStatus::ok, "StreamingWeldLine::push: checked sample refused");
@@ -160,10 +167,11 @@ class StreamingWeldLine {
   }
 
  private:
+  // Copies of one configured meter: the only allocation, at setup.
   StreamingWeldLine(std::size_t hot_spots, const Meter& prototype)
       : meters_(hot_spots, prototype) {}
 
-  std::vector<Meter> meters_;
+  std::vector<Meter> meters_;  // one live damage meter per hot spot, in line order
 };
 
 }  // namespace flexstress::fatigue

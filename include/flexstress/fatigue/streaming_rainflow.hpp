@@ -15,8 +15,9 @@
 //   - every sample is replaced by its class index; reversals and ranges are exact integers,
 //     reported at class centres;
 //   - on N classes the residue never holds more than 2N - 1 reversals: its ranges (integers in
-//     1..N-1) rise strictly, then fall strictly (a weak local minimum would have closed), so a
-//     residue buffer of 2N (compile time) can never overflow, however long the history;
+//     1..N-1) rise strictly, then fall strictly, the largest at most twice (an inner range no
+//     larger than both neighbours would have closed), so at most 2N - 2 ranges; a residue
+//     buffer of 2N (compile time) can never overflow, however long the history;
 //   - streaming equals batch within this rule: count_cycles_classed() on the same samples, grid
 //     and gate gives the same (range, mean, count) rows and the same damage (tested);
 //   - a finite sample outside the window is refused with StepStatus::capacity_exceeded and

@@ -31,6 +31,7 @@
 #include "flexstress/fe/assembly.hpp"
 #include "flexstress/fe/eigen_solver.hpp"
 #include "flexstress/fe/rigid_body_modes.hpp"
+#include "flexstress/fe/static_solver.hpp"
 #include "flexstress/reduction/interface.hpp"
 
 namespace flexstress::reduction {

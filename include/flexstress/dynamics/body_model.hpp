@@ -1,0 +1,305 @@
+// Body models of the floating frame of reference formulation (FFRF): rigid bodies and flexible
+// bodies with a compile-time number of deformation modes, one implementation for both (a rigid
+// body is a flexible body with zero modes).
+//
+// Coordinates: R (frame origin, global), Euler parameters theta, modal coordinates p.
+// Velocities v = [R_dot (global); w (body frame); p_dot]. Equations of motion (FFRF reference
+// sheet; Shabana, Dynamics of Multibody Systems, ch. 5):
+//   M(theta, p) v_dot + Q_v + [0; 0; K p + D p_dot] + C_v^T lambda = Q_e
+// with every p-dependent term built from the inertia integrals of the reduced FE model:
+//   W_k(p) = Lambda_0k + sum_l p_l Lambda_lk = sum m u phi_k^T,      S(p) = S0 + S_Phi p,
+//   U(p)   = Lambda_00 + sum_k p_k (Lambda_0k^T + W_k) = sum m u u^T, J = tr(U) 1 - U,
+//   C_k    = sum m u x phi_k = -2 unskew(W_k),                      M_ff = [tr Lambda_kl],
+//   M = [[m 1, -A skew(S), A S_Phi], [skew(S) A^T, J, C], [S_Phi^T A^T, C^T, M_ff]],
+//   Q_v,R = A (w x (w x S) + 2 w x S_Phi p_dot),
+//   Q_v,w = w x J w + 2 (w tr V - V^T w),  V = sum_k p_dot_k W_k,
+//   Q_v,p = [w^T W_k w - |w|^2 tr W_k]_k + 2 G(w) p_dot,  G_kl = -2 w . unskew(Lambda_lk).
+// Nothing is dropped for orthonormal modes: S_Phi and the antisymmetric part of Lambda_0k
+// vanish then, and the general expressions simply evaluate to zero there.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/skew.hpp"
+#include "flexstress/core/status.hpp"
+#include "flexstress/core/types.hpp"
+#include "flexstress/dynamics/body_vector.hpp"
+#include "flexstress/reduction/modal_body_data.hpp"
+
+namespace flexstress {
+
+template <class Scalar, int NModes>
+class BodyModel {
+  static_assert(NModes >= 0, "BodyModel: the number of modes is a non-negative compile-time count");
+
+ public:
+  static constexpr int num_modes = NModes;
+  static constexpr int nv = 6 + NModes;  ///< velocities
+  static constexpr int nq = 7 + NModes;  ///< coordinates (R, theta, p)
+  using VecN = Vec<Scalar, NModes>;
+  using MatN = Mat<Scalar, NModes, NModes>;
+  using MatV = Mat<Scalar, nv, nv>;
+  using VecV = Vec<Scalar, nv>;
+  using Kinematics = BodyKinematics<Scalar, NModes>;
+  using Vector = BodyVector<Scalar, NModes>;
+
+  BodyModel() = default;
+
+  /// A rigid body (NModes == 0): mass, centre of mass and inertia tensor about the centre of
+  /// mass, in the body frame.
+  static BodyModel rigid(Scalar mass, const Vec3<Scalar>& center_of_mass,
+                         const Mat3<Scalar>& inertia_about_com) {
+    static_assert(NModes == 0, "BodyModel::rigid is for bodies with zero modes");
+    BodyModel b;
+    b.mass_ = mass;
+    b.s0_ = mass * center_of_mass;
+    // Inertia about the frame origin (parallel axis), then the equivalent second moment
+    // Lambda_00 with tr(L) 1 - L = J.
+    const Mat3<Scalar> j =
+        inertia_about_com + mass * (center_of_mass.squaredNorm() * Mat3<Scalar>::Identity() -
+                                    center_of_mass * center_of_mass.transpose());
+    b.lambda00_ = Scalar(0.5) * j.trace() * Mat3<Scalar>::Identity() - j;
+    return b;
+  }
+
+  /// A flexible body from reduced FE data, keeping its lowest NModes deformation modes (cast to
+  /// Scalar). Fails if the data has fewer modes than NModes.
+  static Result<BodyModel> from_modal_data(const reduction::ModalBodyData& d) {
+    if (d.num_modes < NModes)
+      return make_error(ErrorCode::size_mismatch, "FFRF body with ", NModes,
+                        " modes: the modal data has only ", d.num_modes,
+                        " (reduce with more interface DOFs or fixed-interface modes)");
+    BodyModel b;
+    const auto& in = d.inertia;
+    b.mass_ = static_cast<Scalar>(in.mass);
+    b.s0_ = in.first[0].cast<Scalar>();
+    b.lambda00_ = in.lambda(0, 0).cast<Scalar>();
+    for (int k = 0; k < NModes; ++k) {
+      b.s_phi_.col(k) = in.first[static_cast<std::size_t>(k + 1)].cast<Scalar>();
+      b.lambda0_.template block<3, 3>(0, 3 * k) = in.lambda(0, k + 1).cast<Scalar>();
+      b.stiffness_(k) = static_cast<Scalar>(d.eigenvalues(k));
+      b.damping_(k) = static_cast<Scalar>(2.0 * d.damping_ratios(k) * std::sqrt(d.eigenvalues(k)));
+      for (int l = 0; l < NModes; ++l) {
+        const Matrix3d& llk = in.lambda(l + 1, k + 1);
+        // Column l of the (9N x N) map p -> vec(W_1..W_N) holds vec(Lambda_lk) at block k.
+        for (int c = 0; c < 3; ++c)
+          for (int r = 0; r < 3; ++r)
+            b.w_map_(9 * k + 3 * c + r, l) = static_cast<Scalar>(llk(r, c));
+        b.mass_ff_(k, l) = static_cast<Scalar>(in.lambda(k + 1, l + 1).trace());
+        const Vector3d g = -2.0 * unskew(in.lambda(l + 1, k + 1));
+        for (int a = 0; a < 3; ++a)
+          b.gyro_[static_cast<std::size_t>(a)](k, l) = static_cast<Scalar>(g(a));
+      }
+    }
+    b.node_positions_.resize(static_cast<std::size_t>(d.num_nodes()));
+    for (Index n = 0; n < d.num_nodes(); ++n)
+      b.node_positions_[static_cast<std::size_t>(n)] =
+          d.node_positions[static_cast<std::size_t>(n)].cast<Scalar>();
+    b.node_has_rotation_ = d.node_has_rotation;
+    b.phi_r_ = d.phi_translation.leftCols(NModes).cast<Scalar>();
+    b.phi_theta_ = d.phi_rotation.leftCols(NModes).cast<Scalar>();
+    return b;
+  }
+
+  // ---- constant data --------------------------------------------------------------------
+  Scalar mass() const { return mass_; }
+  const Vec3<Scalar>& first_moment() const { return s0_; }
+  const VecN& modal_stiffness() const { return stiffness_; }  ///< omega^2
+  const VecN& modal_damping() const { return damping_; }      ///< 2 zeta omega
+  /// Modal damping ratios can be changed after setup (a scene knob, no reallocation).
+  void set_damping_ratio(Scalar zeta) {
+    for (int k = 0; k < NModes; ++k) damping_(k) = Scalar(2) * zeta * std::sqrt(stiffness_(k));
+  }
+  /// Highest modal angular frequency (0 for a rigid body).
+  Scalar max_frequency() const {
+    if constexpr (NModes == 0) {
+      return Scalar(0);
+    } else {
+      return std::sqrt(stiffness_.maxCoeff());
+    }
+  }
+  Index num_nodes() const { return static_cast<Index>(node_positions_.size()); }
+  const Vec3<Scalar>& node_position(Index n) const {
+    return node_positions_[static_cast<std::size_t>(n)];
+  }
+  bool node_has_rotation(Index n) const {
+    return node_has_rotation_[static_cast<std::size_t>(n)] != 0;
+  }
+  /// Translational and rotational mode shapes (3 x NModes) at a node.
+  Mat<Scalar, 3, NModes> phi_r(Index node) const { return phi_r_.template middleRows<3>(3 * node); }
+  Mat<Scalar, 3, NModes> phi_theta(Index node) const {
+    return phi_theta_.template middleRows<3>(3 * node);
+  }
+
+  // ---- body vectors (markers) -------------------------------------------------------------
+  /// A point of the body: for a flexible body at a node (plus a rigid offset carried by the
+  /// node's rotation), for a rigid body anywhere (node < 0, `offset` = position).
+  Vector point(Index node, const Vec3<Scalar>& offset = Vec3<Scalar>::Zero()) const {
+    Vector v;
+    v.is_point = true;
+    if (node < 0) {
+      v.c = offset;
+      return v;
+    }
+    v.c = node_position(node) + offset;
+    if constexpr (NModes > 0) v.psi = phi_r(node) - skew(offset) * phi_theta(node);
+    return v;
+  }
+  /// A direction e0 (body frame) at a node, turned by the node's deformation rotation.
+  Vector direction(Index node, const Vec3<Scalar>& e0) const {
+    Vector v;
+    v.is_point = false;
+    v.c = e0;
+    if constexpr (NModes > 0)
+      if (node >= 0) v.psi = -skew(e0) * phi_theta(node);
+    return v;
+  }
+
+  // ---- state-dependent terms ---------------------------------------------------------------
+  /// Per-step quantities shared by the mass matrix and the force terms.
+  struct Terms {
+    Vec3<Scalar> s;                ///< S(p)
+    Mat<Scalar, 3, 3 * NModes> w;  ///< [W_1 ... W_N]
+    Mat3<Scalar> j;                ///< J(p), about the frame origin, body frame
+    Mat<Scalar, 3, NModes> c;      ///< C(p)
+  };
+
+  void compute_terms(const Kinematics& k, Terms& t) const {
+    if constexpr (NModes == 0) {
+      t.s = s0_;
+      t.j = lambda00_.trace() * Mat3<Scalar>::Identity() - lambda00_;
+    } else {
+      t.s = s0_ + s_phi_ * k.p;
+      const Vec<Scalar, 9 * NModes> wv = w_map_ * k.p;
+      Mat3<Scalar> u = lambda00_;
+      for (int m = 0; m < NModes; ++m) {
+        const Eigen::Map<const Mat3<Scalar>> dw(wv.data() + 9 * m);
+        auto wm = t.w.template block<3, 3>(0, 3 * m);
+        wm = lambda0_.template block<3, 3>(0, 3 * m) + dw;
+        u += k.p(m) * (lambda0_.template block<3, 3>(0, 3 * m).transpose() + wm);
+        t.c.col(m) = Scalar(-2) * unskew(Mat3<Scalar>(wm));
+      }
+      t.j = u.trace() * Mat3<Scalar>::Identity() - u;
+    }
+  }
+
+  /// Mass matrix (nv x nv), symmetric.
+  void mass_matrix(const Kinematics& k, const Terms& t, MatV& m) const {
+    const Mat3<Scalar>& a = k.rotation;
+    m.template topLeftCorner<3, 3>() = mass_ * Mat3<Scalar>::Identity();
+    const Mat3<Scalar> r_w = -a * skew(t.s);
+    m.template block<3, 3>(0, 3) = r_w;
+    m.template block<3, 3>(3, 0) = r_w.transpose();
+    m.template block<3, 3>(3, 3) = t.j;
+    if constexpr (NModes > 0) {
+      const Mat<Scalar, 3, NModes> r_p = a * s_phi_;
+      m.template block<3, NModes>(0, 6) = r_p;
+      m.template block<NModes, 3>(6, 0) = r_p.transpose();
+      m.template block<3, NModes>(3, 6) = t.c;
+      m.template block<NModes, 3>(6, 3) = t.c.transpose();
+      m.template block<NModes, NModes>(6, 6) = mass_ff_;
+    }
+  }
+
+  /// Quadratic velocity vector Q_v (added on the left-hand side).
+  void quadratic_velocity(const Kinematics& k, const Terms& t, VecV& q) const {
+    const Vec3<Scalar>& w = k.omega;
+    Vec3<Scalar> qr = w.cross(w.cross(t.s));
+    Vec3<Scalar> qw = w.cross(t.j * w);
+    if constexpr (NModes > 0) {
+      qr += Scalar(2) * w.cross(Vec3<Scalar>(s_phi_ * k.p_dot));
+      Mat3<Scalar> v = Mat3<Scalar>::Zero();
+      for (int m = 0; m < NModes; ++m) v += k.p_dot(m) * t.w.template block<3, 3>(0, 3 * m);
+      qw += Scalar(2) * (w * v.trace() - v.transpose() * w);
+      const Scalar w2 = w.squaredNorm();
+      MatN g = w(0) * gyro_[0] + w(1) * gyro_[1] + w(2) * gyro_[2];
+      VecN qp = Scalar(2) * g * k.p_dot;
+      for (int m = 0; m < NModes; ++m) {
+        const auto wm = t.w.template block<3, 3>(0, 3 * m);
+        qp(m) += w.dot(wm * w) - w2 * wm.trace();
+      }
+      q.template tail<NModes>() = qp;
+    }
+    q.template head<3>() = k.rotation * qr;
+    q.template segment<3>(3) = qw;
+  }
+
+  /// Generalized gravity force (added on the right-hand side): [m g; S x A^T g; S_Phi^T A^T g].
+  void gravity_force(const Kinematics& k, const Terms& t, const Vec3<Scalar>& g, VecV& q) const {
+    const Vec3<Scalar> gb = k.rotation.transpose() * g;
+    q.template head<3>() = mass_ * g;
+    q.template segment<3>(3) = t.s.cross(gb);
+    if constexpr (NModes > 0) q.template tail<NModes>() = s_phi_.transpose() * gb;
+  }
+
+  /// Kinetic energy 1/2 v^T M v.
+  Scalar kinetic_energy(const Kinematics& k) const {
+    Terms t;
+    compute_terms(k, t);
+    MatV m;
+    mass_matrix(k, t, m);
+    VecV v;
+    v << k.velocity, k.omega, k.p_dot;
+    return Scalar(0.5) * v.dot(m * v);
+  }
+  /// Elastic energy 1/2 p^T K p.
+  Scalar elastic_energy(const Kinematics& k) const {
+    if constexpr (NModes == 0) {
+      return Scalar(0);
+    } else {
+      return Scalar(0.5) * k.p.dot(stiffness_.cwiseProduct(k.p));
+    }
+  }
+  /// Potential of uniform gravity g: -g . (m R + A S(p)).
+  Scalar gravity_potential(const Kinematics& k, const Vec3<Scalar>& g) const {
+    Terms t;
+    compute_terms(k, t);
+    return -g.dot(mass_ * k.position + k.rotation * t.s);
+  }
+  /// Linear momentum m R_dot + A (w x S + S_Phi p_dot), global.
+  Vec3<Scalar> linear_momentum(const Kinematics& k) const {
+    Terms t;
+    compute_terms(k, t);
+    Vec3<Scalar> body = k.omega.cross(t.s);
+    if constexpr (NModes > 0) body += s_phi_ * k.p_dot;
+    return mass_ * k.velocity + k.rotation * body;
+  }
+  /// Angular momentum about the global origin: R x L + A (S x A^T R_dot + J w + C p_dot).
+  Vec3<Scalar> angular_momentum(const Kinematics& k) const {
+    Terms t;
+    compute_terms(k, t);
+    Vec3<Scalar> body =
+        t.s.cross(Vec3<Scalar>(k.rotation.transpose() * k.velocity)) + t.j * k.omega;
+    if constexpr (NModes > 0) body += t.c * k.p_dot;
+    return k.position.cross(linear_momentum(k)) + k.rotation * body;
+  }
+
+ private:
+  Scalar mass_ = Scalar(0);
+  Vec3<Scalar> s0_ = Vec3<Scalar>::Zero();
+  Mat3<Scalar> lambda00_ = Mat3<Scalar>::Zero();
+  Mat<Scalar, 3, NModes> s_phi_ = Mat<Scalar, 3, NModes>::Zero();
+  Mat<Scalar, 3, 3 * NModes> lambda0_ = Mat<Scalar, 3, 3 * NModes>::Zero();
+  Mat<Scalar, 9 * NModes, NModes> w_map_ = Mat<Scalar, 9 * NModes, NModes>::Zero();
+  MatN mass_ff_ = MatN::Zero();
+  std::array<MatN, 3> gyro_{MatN::Zero(), MatN::Zero(), MatN::Zero()};
+  VecN stiffness_ = VecN::Zero();
+  VecN damping_ = VecN::Zero();
+  std::vector<Vec3<Scalar>> node_positions_;
+  std::vector<unsigned char> node_has_rotation_;
+  Eigen::Matrix<Scalar, Eigen::Dynamic, NModes> phi_r_;
+  Eigen::Matrix<Scalar, Eigen::Dynamic, NModes> phi_theta_;
+};
+
+/// FFRFBody<10> is a flexible body with 10 modes in double; FFRFBody<10, float> in float.
+template <int NModes, class Scalar = double>
+using FFRFBody = BodyModel<Scalar, NModes>;
+/// A rigid body (no modes).
+template <class Scalar = double>
+using RigidBodyT = BodyModel<Scalar, 0>;
+using RigidBody = BodyModel<double, 0>;
+
+}  // namespace flexstress

@@ -1,0 +1,112 @@
+// A vector attached to a (flexible) body: the primitive of joints, markers and forces.
+//
+// In the body frame a point or a direction of a deformable body is affine in the modal
+// coordinates: u = c + Psi p. A node: c = u0, Psi = Phi_R. A point at a rigid offset d from a
+// node, carried by the node's small rotation I + skew(Phi_theta p) (paper eq. 9-11):
+// c = u0 + d, Psi = Phi_R - skew(d) Phi_theta. A direction e0 at a node:
+// c = e0, Psi = -skew(e0) Phi_theta. A rigid body is the case Psi = 0 (zero modes).
+//
+// Globally x = [R] + A u (R only for points). With body velocities v = [R_dot; w; p_dot]
+// (w in the body frame) everything a constraint needs follows exactly:
+//   x_dot  = J v,  J = [I (points) | -A skew(u) | A Psi],
+//   x_ddot = J v_dot + A (w x (w x u) + 2 w x Psi p_dot)   (the convective part),
+//   b^T J  = [b^T (points) | (u x A^T b)^T | (A^T b)^T Psi].
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "flexstress/core/skew.hpp"
+#include "flexstress/core/types.hpp"
+
+namespace flexstress {
+
+/// The kinematic state of one body needed to evaluate body vectors: orientation A, modal
+/// coordinates p, body angular velocity w and modal velocities p_dot.
+template <class Scalar, int NModes>
+struct BodyKinematics {
+  Vec3<Scalar> position = Vec3<Scalar>::Zero();      ///< R
+  Vec3<Scalar> velocity = Vec3<Scalar>::Zero();      ///< R_dot
+  Mat3<Scalar> rotation = Mat3<Scalar>::Identity();  ///< A
+  Vec<Scalar, NModes> p = Vec<Scalar, NModes>::Zero();
+  Vec3<Scalar> omega = Vec3<Scalar>::Zero();  ///< w, body frame
+  Vec<Scalar, NModes> p_dot = Vec<Scalar, NModes>::Zero();
+};
+
+template <class Scalar, int NModes>
+struct BodyVector {
+  static constexpr int nv = 6 + NModes;
+  using RowV = Eigen::Matrix<Scalar, 1, nv>;
+
+  Vec3<Scalar> c = Vec3<Scalar>::Zero();
+  Mat<Scalar, 3, NModes> psi = Mat<Scalar, 3, NModes>::Zero();
+  bool is_point = false;
+
+  /// Body-frame value u = c + Psi p.
+  Vec3<Scalar> local(const BodyKinematics<Scalar, NModes>& k) const {
+    if constexpr (NModes == 0) {
+      return c;
+    } else {
+      return c + psi * k.p;
+    }
+  }
+  /// Global value x = [R] + A u.
+  Vec3<Scalar> global(const BodyKinematics<Scalar, NModes>& k) const {
+    const Vec3<Scalar> g = k.rotation * local(k);
+    return is_point ? Vec3<Scalar>(k.position + g) : g;
+  }
+  /// Global time derivative J v.
+  Vec3<Scalar> velocity(const BodyKinematics<Scalar, NModes>& k) const {
+    Vec3<Scalar> body = k.omega.cross(local(k));
+    if constexpr (NModes > 0) body += psi * k.p_dot;
+    const Vec3<Scalar> g = k.rotation * body;
+    return is_point ? Vec3<Scalar>(k.velocity + g) : g;
+  }
+  /// Convective acceleration A (w x (w x u) + 2 w x Psi p_dot): x_ddot = J v_dot + this.
+  Vec3<Scalar> convective(const BodyKinematics<Scalar, NModes>& k) const {
+    const Vec3<Scalar> u = local(k);
+    Vec3<Scalar> body = k.omega.cross(k.omega.cross(u));
+    if constexpr (NModes > 0) body += Scalar(2) * k.omega.cross(Vec3<Scalar>(psi * k.p_dot));
+    return k.rotation * body;
+  }
+  /// Row vector b^T J (1 x nv) for a global vector b.
+  RowV row(const BodyKinematics<Scalar, NModes>& k, const Vec3<Scalar>& b) const {
+    RowV r;
+    const Vec3<Scalar> bb = k.rotation.transpose() * b;
+    if (is_point)
+      r.template head<3>() = b.transpose();
+    else
+      r.template head<3>().setZero();
+    r.template segment<3>(3) = local(k).cross(bb).transpose();
+    if constexpr (NModes > 0) r.template tail<NModes>() = bb.transpose() * psi;
+    return r;
+  }
+  /// Full Jacobian J (3 x nv), global rows.
+  Eigen::Matrix<Scalar, 3, nv> jacobian(const BodyKinematics<Scalar, NModes>& k) const {
+    Eigen::Matrix<Scalar, 3, nv> j;
+    j.template leftCols<3>() = is_point ? Mat3<Scalar>::Identity() : Mat3<Scalar>::Zero();
+    j.template middleCols<3>(3) = -k.rotation * skew(local(k));
+    if constexpr (NModes > 0) j.template rightCols<NModes>() = k.rotation * psi;
+    return j;
+  }
+};
+
+/// A point fixed in a rigid body (or the undeformed position of a flexible one).
+template <class Scalar, int NModes = 0>
+BodyVector<Scalar, NModes> body_point(const Vec3<Scalar>& c) {
+  BodyVector<Scalar, NModes> v;
+  v.c = c;
+  v.is_point = true;
+  return v;
+}
+
+/// A direction fixed in a rigid body.
+template <class Scalar, int NModes = 0>
+BodyVector<Scalar, NModes> body_direction(const Vec3<Scalar>& e) {
+  BodyVector<Scalar, NModes> v;
+  v.c = e;
+  v.is_point = false;
+  return v;
+}
+
+}  // namespace flexstress

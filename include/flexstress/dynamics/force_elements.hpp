@@ -1,0 +1,45 @@
+// Force elements between markers: a linear spring-damper along the line between two marker
+// origins (translational spring-damper-actuator, TSDA). Active with the SpringDampers effect.
+#pragma once
+
+#include <cmath>
+
+#include "flexstress/core/types.hpp"
+#include "flexstress/dynamics/marker.hpp"
+
+namespace flexstress {
+
+/// Spring-damper between the origins of marker i (body I) and marker j (body J):
+/// tension f = k (L - L0) + c L_dot (+ preload), acting along the line.
+template <int I, int J>
+struct SpringDamper {
+  static constexpr int body_i = I, body_j = J;
+  template <class Scalar>
+  struct Params {
+    Scalar stiffness = Scalar(0);
+    Scalar damping = Scalar(0);
+    Scalar rest_length = Scalar(0);
+    Scalar preload = Scalar(0);
+  };
+  /// Force on marker j's origin (global); marker i gets the opposite.
+  template <class Scalar, int NI, int NJ>
+  static Vec3<Scalar> force(const Params<Scalar>& p, const MarkerEval<Scalar, NI>& i,
+                            const MarkerEval<Scalar, NJ>& j) {
+    const Vec3<Scalar> d = j.origin.value - i.origin.value;
+    const Scalar length = d.norm();
+    if (!(length > Scalar(0))) return Vec3<Scalar>::Zero();
+    const Vec3<Scalar> n = d / length;
+    const Scalar rate = n.dot(Vec3<Scalar>(j.origin.velocity - i.origin.velocity));
+    const Scalar tension = p.stiffness * (length - p.rest_length) + p.damping * rate + p.preload;
+    return -tension * n;
+  }
+  /// Stored energy 1/2 k (L - L0)^2 + preload L.
+  template <class Scalar, int NI, int NJ>
+  static Scalar energy(const Params<Scalar>& p, const MarkerEval<Scalar, NI>& i,
+                       const MarkerEval<Scalar, NJ>& j) {
+    const Scalar l = (j.origin.value - i.origin.value).norm();
+    return Scalar(0.5) * p.stiffness * (l - p.rest_length) * (l - p.rest_length) + p.preload * l;
+  }
+};
+
+}  // namespace flexstress

@@ -1,0 +1,387 @@
+// Implicit integrator: Lie-group generalized-alpha with an index-3 augmented Lagrangian and
+// velocity projection.
+//
+// Time discretization (Bruls & Cardona, J. Comput. Nonlinear Dyn. 5 (2010) 031002; Arnold,
+// Bruls, Cardona, Multibody Syst. Dyn. 33 (2015)): with v_dot the true and a the algorithmic
+// accelerations,
+//   (1 - am) a_{n+1} + am a_n = (1 - af) v_dot_{n+1} + af v_dot_n,
+//   v_{n+1} = v_n + h ((1 - g) a_n + g a_{n+1}),
+//   q_{n+1} = q_n o exp(h dq),  dq = v_n + h ((1/2 - b) a_n + b a_{n+1}),
+// where "o exp" moves R and p additively and theta = theta (x) exp(.) on the rotation group, so
+// the velocities stay the body-frame w and second order is kept despite rotations (a textbook
+// alpha method on q_dot = v with renormalized Euler parameters is only first order).
+// Parameters from the spectral radius at infinity rho (Chung & Hulbert 1993):
+// am = (2 rho - 1)/(rho + 1), af = rho/(rho + 1), g = 1/2 - am + af, b = (g + 1/2)^2 / 4;
+// rho = 1 is the trapezoidal rule without numerical dissipation.
+//
+// Constraints (index 3, positions enforced exactly): augmented Lagrangian (Bayo, Garcia de Jalon,
+// Serna 1988; Cuadrado et al., ALI3-P, Multibody Syst. Dyn. 4 (2000)):
+//   M v_dot - Q + B^T (lambda* + alpha Phi) = 0,  lambda* += alpha Phi after each iteration.
+// The Newton matrix S = M b' + D g' + K + alpha B^T B (b' = (1 - am)/(h^2 b (1 - af)),
+// g' = g/(h b)) is symmetric positive definite even when B is rank-deficient (redundant joints
+// such as a planar loop modelled in 3D, singular positions), so no KKT system is ever solved.
+// Modified Newton: S is factorized once and reused across iterations and steps until the
+// observed contraction rate says it is stale. After convergence the velocities are projected
+// onto B v + Phi_t = 0 with the same factorization, a projection orthogonal in the metric S
+// (dominated by M b'), which removes velocity drift.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include "flexstress/core/scalar_traits.hpp"
+#include "flexstress/core/status.hpp"
+#include "flexstress/dynamics/scene.hpp"
+
+namespace flexstress {
+
+/// Generalized-alpha parameters from the spectral radius at infinite frequency.
+template <class Scalar>
+struct GeneralizedAlpha {
+  Scalar alpha_m, alpha_f, gamma, beta;
+  static GeneralizedAlpha from_spectral_radius(Scalar rho) {
+    GeneralizedAlpha p;
+    p.alpha_m = (Scalar(2) * rho - Scalar(1)) / (rho + Scalar(1));
+    p.alpha_f = rho / (rho + Scalar(1));
+    p.gamma = Scalar(0.5) - p.alpha_m + p.alpha_f;
+    p.beta = Scalar(0.25) * (p.gamma + Scalar(0.5)) * (p.gamma + Scalar(0.5));
+    return p;
+  }
+};
+
+template <class SceneT>
+class ImplicitIntegrator {
+ public:
+  using Scalar = typename SceneT::scalar_type;
+  using State = typename SceneT::State;
+  using Workspace = typename SceneT::Workspace;
+  using VecV = typename SceneT::VecV;
+  using VecC = typename SceneT::VecC;
+  using MatVV = typename SceneT::MatVV;
+  static constexpr int nv = SceneT::nv, nc = SceneT::nc;
+
+  struct Settings {
+    Scalar step = Scalar(1e-3);
+    /// Spectral radius at infinity: 1 conserves energy (no numerical damping), smaller values
+    /// damp the highest frequencies. Use rho < 1 for scenes with joints: with rho = 1 (the
+    /// trapezoidal rule) the multipliers of an index-3 system are only weakly stable and drift
+    /// into oscillation (Cardona & Geradin, Comput. Struct. 33 (1989)); rho = 1 is for energy
+    /// studies of unconstrained bodies.
+    Scalar spectral_radius = Scalar(0.9);
+    int max_iterations = 30;
+    /// Newton stops when the largest correction, seen as a change of acceleration b' dx, is
+    /// below this (m/s^2, rad/s^2, modal units), and the largest constraint violation is below
+    /// the same amount divided by b'. Scaling with b' ~ 1/h^2 keeps the solver's error below
+    /// the truncation error at every step size: a fixed position tolerance would let velocity
+    /// errors g' dx ~ tol/h accumulate as an energy random walk at small h.
+    Scalar acceleration_tolerance = std::is_same_v<Scalar, float> ? Scalar(1e-2) : Scalar(1e-5);
+    /// Floor of the position tolerances (round-off of coordinates of order one).
+    Scalar position_floor = Scalar(100) * std::numeric_limits<Scalar>::epsilon();
+    /// A converged step whose violation (position or velocity) still exceeds this reports
+    /// constraint_violation.
+    Scalar violation_limit = std::is_same_v<Scalar, float> ? Scalar(1e-3) : Scalar(1e-6);
+    /// Penalty alpha relative to b' times the largest mass-matrix diagonal entry. Larger values
+    /// converge the multipliers faster, but the iteration matrix omits the geometric stiffness
+    /// of the transient penalty forces (alpha times the predictor's constraint violation), so
+    /// the factor must stay well below L / |Phi_predicted| (about 1e6 at h = 1e-2, far more at
+    /// h = 1e-3).
+    Scalar penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e2) : Scalar(1e3);
+    bool reuse_factorization = true;
+    /// Refactorize when a correction shrinks by less than this factor (stale matrix).
+    Scalar refactor_rate = Scalar(0.25);
+    /// Project velocities onto B v + Phi_t = 0 after each step. Index-3 integration keeps the
+    /// positions on the constraints and the velocities within O(h^2) of them (bounded, no
+    /// drift), so this is optional; each projection removes the O(h^2) component and with it
+    /// an O(h^4) amount of kinetic energy per step.
+    bool project_velocities = false;
+    /// Also project accelerations onto B v_dot + conv = 0 (needs project_velocities).
+    bool project_accelerations = false;
+    int projection_iterations = 3;
+    /// Predict v_dot by linear extrapolation of the last two steps (else: constant).
+    bool extrapolate_predictor = true;
+  };
+
+  struct Statistics {
+    long steps = 0;
+    long iterations = 0;
+    long factorizations = 0;
+    int last_iterations = 0;
+    int last_factorizations = 0;
+  };
+
+  explicit ImplicitIntegrator(const SceneT& scene, const Settings& settings = Settings())
+      : scene_(&scene), settings_(settings) {
+    iteration_.setZero(nv, nv);
+    if constexpr (!SceneT::fixed_storage) llt_ = Eigen::LLT<MatVV>(nv);  // allocate once
+    for (VecV* v : {&r_, &dx_, &v_n_, &vd_n_, &a_n_, &a1_, &tmp_, &vd_prev_, &v_save_, &vd_save_})
+      v->setZero(nv);
+    e_.setZero(nc);
+    lambda_star_.setZero(nc);
+    lambda_save_.setZero(nc);
+    set_step(settings.step);
+  }
+
+  const Settings& settings() const { return settings_; }
+  const Statistics& statistics() const { return stats_; }
+  Workspace& workspace() { return ws_; }
+  const Workspace& workspace() const { return ws_; }
+
+  /// Changes the step size (the next step refactorizes).
+  void set_step(Scalar h) {
+    settings_.step = h;
+    gen_ = GeneralizedAlpha<Scalar>::from_spectral_radius(settings_.spectral_radius);
+    beta_prime_ = (Scalar(1) - gen_.alpha_m) / (h * h * gen_.beta * (Scalar(1) - gen_.alpha_f));
+    gamma_prime_ = gen_.gamma / (h * gen_.beta);
+    tol_x_ = std::max(settings_.acceleration_tolerance / beta_prime_, settings_.position_floor);
+    have_factorization_ = false;
+  }
+
+  /// Consistent initial conditions at s.t: positions onto Phi = 0 (least mass-weighted change),
+  /// velocities onto B v + Phi_t = 0, then accelerations and multipliers from the equations of
+  /// motion (index-1 augmented Lagrangian iteration). Sets a = v_dot.
+  Status initialize(State& s, int max_iterations = 100) {
+    const Scalar tol = settings_.position_floor * Scalar(10);
+    factorize_projection(s);
+    for (int it = 0;; ++it) {
+      scene_->update_kinematics(s, ws_);
+      scene_->update_constraints(s, ws_);
+      if (ws_.phi.cwiseAbs().maxCoeff() <= tol) break;
+      if (it >= max_iterations)
+        return make_error(
+            ErrorCode::not_converged,
+            "initial conditions: the joints cannot be assembled at t = ", static_cast<double>(s.t),
+            " (largest violation ", static_cast<double>(ws_.phi.cwiseAbs().maxCoeff()),
+            " in joint ", SceneT::joint_of_row(worst_row(ws_.phi)), ")");
+      dx_.noalias() = -alpha_ * ws_.jac.transpose() * ws_.phi;
+      llt_.solveInPlace(dx_);
+      scene_->integrate(s, dx_);
+      if (it % 5 == 4) factorize_projection(s);
+    }
+    project_velocities(s, max_iterations);
+    // Accelerations: (M + alpha B^T B) v_dot = Q - B^T lambda - alpha B^T conv, iterated.
+    scene_->evaluate(s, ws_);
+    iteration_.setZero();
+    scene_->mass_blocks(ws_, iteration_);
+    iteration_.noalias() += alpha_ * ws_.jac.transpose() * ws_.jac;
+    llt_.compute(iteration_);
+    have_factorization_ = false;
+    s.lambda.setZero();
+    for (int it = 0; it < max_iterations; ++it) {
+      r_ = ws_.force - ws_.jac.transpose() * (s.lambda + alpha_ * ws_.conv);
+      s.v_dot = llt_.solve(r_);
+      e_.noalias() = ws_.jac * s.v_dot + ws_.conv;
+      s.lambda += alpha_ * e_;
+      if (e_.cwiseAbs().maxCoeff() <= tol * (Scalar(1) + ws_.conv.cwiseAbs().maxCoeff())) break;
+    }
+    s.a = s.v_dot;
+    has_previous_ = false;
+    return Status::success();
+  }
+
+  /// One step of size h. Never allocates or throws. On failure the state is left as it was
+  /// before the step (except for constraint_violation, which keeps the step).
+  StepStatus step(State& s) {
+    const Scalar h = settings_.step;
+    const auto q_n = s.q;
+    v_n_ = s.v;
+    vd_n_ = s.v_dot;
+    a_n_ = s.a;
+    const Scalar t_n = s.t;
+    lambda_star_ = s.lambda;
+    // Predictor: v_dot_{n+1} extrapolated linearly from the last two steps (constant v_dot on
+    // the first). A better predictor means a smaller constraint violation Phi_pred to correct,
+    // hence smaller transient penalty forces and fewer iterations with a reused matrix.
+    if (has_previous_ && settings_.extrapolate_predictor) s.v_dot = Scalar(2) * vd_n_ - vd_prev_;
+    a1_ = ((Scalar(1) - gen_.alpha_f) * s.v_dot + gen_.alpha_f * vd_n_ - gen_.alpha_m * a_n_) /
+          (Scalar(1) - gen_.alpha_m);
+    s.v = v_n_ + h * ((Scalar(1) - gen_.gamma) * a_n_ + gen_.gamma * a1_);
+    tmp_ = h * (v_n_ + h * ((Scalar(0.5) - gen_.beta) * a_n_ + gen_.beta * a1_));
+    scene_->integrate(s, tmp_);
+    s.t = t_n + h;
+    int it = 0;
+    bool converged = false, fresh = false, stale_step = false, restored = false;
+    Scalar previous = std::numeric_limits<Scalar>::infinity();
+    Scalar residual_prev = std::numeric_limits<Scalar>::infinity();
+    stats_.last_factorizations = 0;
+    for (; it < settings_.max_iterations; ++it) {
+      scene_->evaluate(s, ws_);
+      if (!have_factorization_ || !settings_.reuse_factorization) {
+        factorize(s);
+        fresh = true;
+      }
+      if (it > 0 && !restored) lambda_star_.noalias() += alpha_ * ws_.phi;
+      restored = false;
+      // Residual M v_dot - Q + B^T (lambda* + alpha Phi).
+      e_ = lambda_star_ + alpha_ * ws_.phi;
+      r_.noalias() = -ws_.force;
+      r_.noalias() += ws_.jac.transpose() * e_;
+      scene_->add_mass_times(ws_, s.v_dot, r_);
+      const Scalar residual = r_.norm();
+      // A correction made with a reused matrix that increased the residual is undone and
+      // redone with a fresh matrix: a stale constraint Jacobian leaks the (large, transient)
+      // penalty forces into the free directions of the mechanism.
+      if (stale_step && !(residual < residual_prev)) {
+        s.q = q_save_;
+        s.v = v_save_;
+        s.v_dot = vd_save_;
+        lambda_star_ = lambda_save_;
+        have_factorization_ = false;
+        stale_step = false;
+        restored = true;
+        continue;
+      }
+      dx_ = -llt_.solve(r_);
+      const Scalar size = dx_.cwiseAbs().maxCoeff();
+      if (!std::isfinite(size)) break;
+      // A stale matrix that contracts too slowly: refactorize and redo this iteration.
+      if (!fresh && it > 0 && size > settings_.refactor_rate * previous) {
+        factorize(s);
+        fresh = true;
+        dx_ = -llt_.solve(r_);
+      }
+      previous = dx_.cwiseAbs().maxCoeff();
+      stale_step = !fresh;
+      if (stale_step) {
+        q_save_ = s.q;
+        v_save_ = s.v;
+        vd_save_ = s.v_dot;
+        lambda_save_ = lambda_star_;
+      }
+      residual_prev = residual;
+      scene_->integrate(s, dx_);
+      s.v_dot.noalias() += beta_prime_ * dx_;
+      s.v.noalias() += gamma_prime_ * dx_;
+      if (previous <= tol_x_ && ws_.phi.cwiseAbs().maxCoeff() <= tol_x_) {
+        converged = true;
+        ++it;
+        break;
+      }
+    }
+    stats_.last_iterations = it;
+    stats_.iterations += it;
+    if (!converged || !s.v.allFinite() || !s.v_dot.allFinite()) {
+      const bool finite = s.v.allFinite() && s.v_dot.allFinite();
+      s.q = q_n;
+      s.v = v_n_;
+      s.v_dot = vd_n_;
+      s.a = a_n_;
+      s.t = t_n;
+      have_factorization_ = false;
+      return finite ? StepStatus::newton_not_converged : StepStatus::non_finite_state;
+    }
+    s.lambda = lambda_star_;
+    vd_prev_ = vd_n_;
+    has_previous_ = true;
+    ++stats_.steps;
+    // Drift control: project velocities onto B v + Phi_t = 0 and accelerations onto
+    // B v_dot + conv = 0 (ALI3-P). Without the acceleration projection the trapezoidal rule
+    // (rho = 1) leaves the accelerations of an index-3 system weakly unstable: they oscillate
+    // from step to step without damping.
+    scene_->update_kinematics(s, ws_);
+    scene_->update_constraints(s, ws_);
+    if (settings_.project_velocities) {
+      project_velocities(s, settings_.projection_iterations);
+      if (settings_.project_accelerations) {
+        scene_->update_kinematics(s, ws_);
+        scene_->update_constraints(s, ws_);
+        project_accelerations(s, settings_.projection_iterations);
+      }
+    }
+    s.a = ((Scalar(1) - gen_.alpha_f) * s.v_dot + gen_.alpha_f * vd_n_ - gen_.alpha_m * a_n_) /
+          (Scalar(1) - gen_.alpha_m);
+    if (ws_.phi.cwiseAbs().maxCoeff() > settings_.violation_limit)
+      return StepStatus::constraint_violation;
+    if (settings_.project_velocities) {
+      e_.noalias() = ws_.jac * s.v + ws_.phi_t;
+      if (e_.cwiseAbs().maxCoeff() >
+          settings_.violation_limit * (Scalar(1) + s.v.cwiseAbs().maxCoeff()))
+        return StepStatus::constraint_violation;
+    }
+    return StepStatus::ok;
+  }
+
+  /// Penalty alpha in use (after the first factorization).
+  Scalar penalty() const { return alpha_; }
+
+ private:
+  /// S = M b' + D g' + K + alpha B^T B at the current evaluation (ws_ is up to date).
+  void factorize(const State&) {
+    iteration_.setZero();
+    scene_->mass_blocks(ws_, iteration_);
+    const Scalar m_ref = iteration_.diagonal().cwiseAbs().maxCoeff();
+    iteration_ *= beta_prime_;
+    scene_->add_modal_stiffness_damping(iteration_, Scalar(1), gamma_prime_);
+    alpha_ = settings_.penalty_factor * beta_prime_ * m_ref;
+    iteration_.noalias() += alpha_ * ws_.jac.transpose() * ws_.jac;
+    llt_.compute(iteration_);
+    have_factorization_ = true;
+    ++stats_.factorizations;
+    ++stats_.last_factorizations;
+  }
+
+  /// Metric for position/velocity projections outside a step: M + alpha B^T B.
+  void factorize_projection(const State& s) {
+    scene_->evaluate(s, ws_);
+    iteration_.setZero();
+    scene_->mass_blocks(ws_, iteration_);
+    const Scalar m_ref = iteration_.diagonal().cwiseAbs().maxCoeff();
+    alpha_ = settings_.penalty_factor * m_ref;
+    iteration_.noalias() += alpha_ * ws_.jac.transpose() * ws_.jac;
+    llt_.compute(iteration_);
+    have_factorization_ = false;  // the step needs its own matrix
+    alpha_ = settings_.penalty_factor * m_ref;
+  }
+
+  /// v <- v - S^-1 alpha B^T (B v + Phi_t), repeated (ws_ holds B and Phi_t at s).
+  void project_velocities(State& s, int iterations) {
+    for (int k = 0; k < iterations; ++k) {
+      e_.noalias() = ws_.jac * s.v + ws_.phi_t;
+      if (e_.cwiseAbs().maxCoeff() <=
+          settings_.position_floor * (Scalar(1) + s.v.cwiseAbs().maxCoeff()))
+        break;
+      tmp_.noalias() = alpha_ * ws_.jac.transpose() * e_;
+      llt_.solveInPlace(tmp_);
+      s.v -= tmp_;
+    }
+  }
+
+  /// v_dot <- v_dot - S^-1 alpha B^T (B v_dot + conv), repeated (ws_ up to date at s).
+  void project_accelerations(State& s, int iterations) {
+    for (int k = 0; k < iterations; ++k) {
+      e_.noalias() = ws_.jac * s.v_dot + ws_.conv;
+      if (e_.cwiseAbs().maxCoeff() <=
+          settings_.position_floor * (Scalar(1) + s.v_dot.cwiseAbs().maxCoeff()))
+        break;
+      tmp_.noalias() = alpha_ * ws_.jac.transpose() * e_;
+      llt_.solveInPlace(tmp_);
+      s.v_dot -= tmp_;
+    }
+  }
+
+  template <class V>
+  static int worst_row(const V& phi) {
+    int r = 0;
+    phi.cwiseAbs().maxCoeff(&r);
+    return r;
+  }
+
+  const SceneT* scene_;
+  Settings settings_;
+  Statistics stats_;
+  GeneralizedAlpha<Scalar> gen_{};
+  Scalar beta_prime_ = Scalar(0), gamma_prime_ = Scalar(0), alpha_ = Scalar(0), tol_x_ = Scalar(0);
+  bool have_factorization_ = false;
+  Workspace ws_;
+  MatVV iteration_;
+  Eigen::LLT<MatVV> llt_;
+  VecV r_, dx_, v_n_, vd_n_, a_n_, a1_, tmp_, vd_prev_, v_save_, vd_save_;
+  VecC lambda_save_;
+  decltype(State::q) q_save_;
+  bool has_previous_ = false;
+  VecC e_, lambda_star_;
+};
+
+}  // namespace flexstress

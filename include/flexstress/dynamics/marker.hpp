@@ -1,0 +1,105 @@
+// Markers: frames attached to bodies (a point and three axes), where joints and force elements
+// act. On a flexible body a marker sits at a node (or at a rigid offset from it) and follows the
+// node's translation and small rotation (paper eq. 9-11); on a rigid body anywhere.
+#pragma once
+
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/types.hpp"
+#include "flexstress/dynamics/body_vector.hpp"
+
+namespace flexstress {
+
+/// Compile-time index of the ground in joint and force definitions.
+inline constexpr int ground = -1;
+
+template <class Scalar, int NModes>
+struct Marker {
+  BodyVector<Scalar, NModes> origin;
+  BodyVector<Scalar, NModes> x, y, z;
+};
+
+/// Builds a marker on `body` at `node` (flexible bodies; -1 for rigid bodies: then `offset` is
+/// the position) with a rigid offset and an orientation (columns: marker axes, body frame).
+template <class Body, class Scalar>
+Marker<Scalar, Body::num_modes> make_marker(const Body& body, Index node,
+                                            const Vec3<Scalar>& offset,
+                                            const Mat3<Scalar>& axes = Mat3<Scalar>::Identity()) {
+  Marker<Scalar, Body::num_modes> m;
+  m.origin = body.point(node, offset);
+  m.x = body.direction(node, axes.col(0));
+  m.y = body.direction(node, axes.col(1));
+  m.z = body.direction(node, axes.col(2));
+  return m;
+}
+
+/// A marker fixed in the ground (or in a rigid body without nodes): position and axes.
+template <class Scalar>
+Marker<Scalar, 0> fixed_marker(const Vec3<Scalar>& position,
+                               const Mat3<Scalar>& axes = Mat3<Scalar>::Identity()) {
+  Marker<Scalar, 0> m;
+  m.origin = body_point<Scalar, 0>(position);
+  m.x = body_direction<Scalar, 0>(axes.col(0));
+  m.y = body_direction<Scalar, 0>(axes.col(1));
+  m.z = body_direction<Scalar, 0>(axes.col(2));
+  return m;
+}
+
+/// An orthonormal frame whose z axis is `axis` (x and y completed deterministically).
+template <class Scalar>
+Mat3<Scalar> frame_with_z_axis(const Vec3<Scalar>& axis) {
+  const Vec3<Scalar> z = axis.normalized();
+  const Vec3<Scalar> helper =
+      std::abs(z.x()) < Scalar(0.9) ? Vec3<Scalar>::UnitX() : Vec3<Scalar>::UnitY();
+  const Vec3<Scalar> x = (helper - helper.dot(z) * z).normalized();
+  Mat3<Scalar> f;
+  f.col(0) = x;
+  f.col(1) = z.cross(x);
+  f.col(2) = z;
+  return f;
+}
+
+/// One evaluated body vector: global value, velocity and convective acceleration.
+template <class Scalar>
+struct VectorEval {
+  Vec3<Scalar> value, velocity, convective;
+};
+
+/// A marker evaluated at a body state: what joints and force elements read.
+template <class Scalar, int NModes>
+struct MarkerEval {
+  static constexpr int nv = 6 + NModes;
+  const Marker<Scalar, NModes>* marker = nullptr;
+  const BodyKinematics<Scalar, NModes>* kin = nullptr;
+  VectorEval<Scalar> origin, x, y, z;
+
+  void evaluate(const Marker<Scalar, NModes>& m, const BodyKinematics<Scalar, NModes>& k) {
+    marker = &m;
+    kin = &k;
+    eval(m.origin, origin);
+    eval(m.x, x);
+    eval(m.y, y);
+    eval(m.z, z);
+  }
+  /// Row b^T J of the marker origin or of an axis (1 x nv).
+  Eigen::Matrix<Scalar, 1, nv> row_origin(const Vec3<Scalar>& b) const {
+    return marker->origin.row(*kin, b);
+  }
+  Eigen::Matrix<Scalar, 1, nv> row_axis(int axis, const Vec3<Scalar>& b) const {
+    return (axis == 0 ? marker->x : axis == 1 ? marker->y : marker->z).row(*kin, b);
+  }
+  const VectorEval<Scalar>& axis(int a) const { return a == 0 ? x : a == 1 ? y : z; }
+  /// Jacobian of the origin (3 x nv).
+  Eigen::Matrix<Scalar, 3, nv> jacobian_origin() const { return marker->origin.jacobian(*kin); }
+
+ private:
+  void eval(const BodyVector<Scalar, NModes>& v, VectorEval<Scalar>& e) const {
+    e.value = v.global(*kin);
+    e.velocity = v.velocity(*kin);
+    e.convective = v.convective(*kin);
+  }
+};
+
+}  // namespace flexstress

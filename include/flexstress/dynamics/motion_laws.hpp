@@ -1,0 +1,115 @@
+// Prescribed motions s(t) for drivers and moving grounds: value, rate and acceleration.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/status.hpp"
+
+namespace flexstress {
+
+template <class Scalar>
+struct MotionValue {
+  Scalar value = Scalar(0), rate = Scalar(0), acceleration = Scalar(0);
+};
+
+/// s(t) = s0 + v t + a t^2 / 2.
+template <class Scalar>
+struct PolynomialLaw {
+  Scalar s0 = Scalar(0), v = Scalar(0), a = Scalar(0);
+  MotionValue<Scalar> operator()(Scalar t) const {
+    return {s0 + v * t + a * t * t / 2, v + a * t, a};
+  }
+};
+
+/// Any callable t -> MotionValue<Scalar> (a lambda, a functor): wraps it as a law type.
+template <class Scalar, class F>
+struct FunctionLaw {
+  F f;
+  MotionValue<Scalar> operator()(Scalar t) const { return f(t); }
+};
+template <class Scalar, class F>
+FunctionLaw<Scalar, F> function_law(F f) {
+  return FunctionLaw<Scalar, F>{std::move(f)};
+}
+
+/// A table (t_i, s_i) interpolated by a cubic spline with zero slope at both ends ("clamped"):
+/// twice continuously differentiable inside, so the driver's acceleration is continuous, and at
+/// rest at the first and last row, so a run can start from static equilibrium. Outside the
+/// table the end values are held. Evaluation does not allocate (binary search).
+template <class Scalar>
+class TableLaw {
+ public:
+  TableLaw() = default;
+
+  /// Fails for fewer than two points, non-increasing times or non-finite values (naming the
+  /// row, counted from 1).
+  static Result<TableLaw> create(const std::vector<double>& t, const std::vector<double>& s) {
+    if (t.size() != s.size())
+      return make_error(ErrorCode::invalid_argument, "table law: ", t.size(), " times but ",
+                        s.size(), " values");
+    if (t.size() < 2)
+      return make_error(ErrorCode::invalid_argument, "table law: needs at least two rows, got ",
+                        t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      if (!std::isfinite(t[i]) || !std::isfinite(s[i]))
+        return make_error(ErrorCode::invalid_argument, "table law: row ", i + 1, " is not finite");
+      if (i > 0 && !(t[i] > t[i - 1]))
+        return make_error(ErrorCode::invalid_argument, "table law: time at row ", i + 1, " (", t[i],
+                          ") does not increase (previous ", t[i - 1], ")");
+    }
+    // Second derivatives m_i: the tridiagonal system of the clamped cubic spline
+    // (de Boor, A Practical Guide to Splines, ch. IV), solved by the Thomas algorithm.
+    const std::size_t n = t.size();
+    std::vector<double> lo(n, 0.0), di(n, 0.0), up(n, 0.0), rhs(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double hl = i > 0 ? t[i] - t[i - 1] : 0.0, hr = i + 1 < n ? t[i + 1] - t[i] : 0.0;
+      const double sl = i > 0 ? (s[i] - s[i - 1]) / hl : 0.0;  // zero end slope
+      const double sr = i + 1 < n ? (s[i + 1] - s[i]) / hr : 0.0;
+      lo[i] = hl;
+      di[i] = 2.0 * (hl + hr);
+      up[i] = hr;
+      rhs[i] = 6.0 * (sr - sl);
+    }
+    for (std::size_t i = 1; i < n; ++i) {
+      const double f = lo[i] / di[i - 1];
+      di[i] -= f * up[i - 1];
+      rhs[i] -= f * rhs[i - 1];
+    }
+    std::vector<double> m(n, 0.0);
+    m[n - 1] = rhs[n - 1] / di[n - 1];
+    for (std::size_t i = n - 1; i-- > 0;) m[i] = (rhs[i] - up[i] * m[i + 1]) / di[i];
+    TableLaw law;
+    law.t_.assign(t.begin(), t.end());
+    law.s_.assign(s.begin(), s.end());
+    law.m_ = std::move(m);
+    return law;
+  }
+
+  MotionValue<Scalar> operator()(Scalar time) const {
+    const double tt = static_cast<double>(time);
+    if (tt <= t_.front()) return {static_cast<Scalar>(s_.front()), Scalar(0), Scalar(0)};
+    if (tt >= t_.back()) return {static_cast<Scalar>(s_.back()), Scalar(0), Scalar(0)};
+    const std::size_t i =
+        static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), tt) - t_.begin()) - 1;
+    const double h = t_[i + 1] - t_[i], a = (t_[i + 1] - tt) / h, b = (tt - t_[i]) / h;
+    const double m0 = m_[i], m1 = m_[i + 1];
+    const double value =
+        a * s_[i] + b * s_[i + 1] + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6;
+    const double rate =
+        (s_[i + 1] - s_[i]) / h + ((1 - 3 * a * a) * m0 + (3 * b * b - 1) * m1) * h / 6;
+    const double acc = a * m0 + b * m1;
+    return {static_cast<Scalar>(value), static_cast<Scalar>(rate), static_cast<Scalar>(acc)};
+  }
+
+  double start_time() const { return t_.front(); }
+  double end_time() const { return t_.back(); }
+
+ private:
+  std::vector<double> t_, s_, m_;
+};
+
+}  // namespace flexstress

@@ -1,0 +1,468 @@
+// A scene: bodies, joints, force elements and effects fixed at compile time, so every size (the
+// velocity count nv, the constraint count nc) is a compile-time constant and the step works on
+// fixed-size storage. Scenes above a size bound (a 40-bar chain) switch to dynamic storage,
+// allocated once when a Workspace is built.
+//
+// Model / Data split (as in Pinocchio): the Scene object is the model (bodies, markers, joint
+// parameters, gravity), set up once and then only read; a State holds coordinates, velocities
+// and multipliers; a Workspace holds everything an evaluation writes. Evaluations are const
+// member functions and never allocate.
+//
+// Global velocity vector: v = [v_0; v_1; ...], v_b = [R_dot (global); w (body); p_dot].
+// Constraints: Phi(q, t) = 0 with Jacobian B (nc x nv): Phi_dot = B v + Phi_t, and the
+// acceleration constraint B v_dot = -conv.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/euler_parameters.hpp"
+#include "flexstress/core/status.hpp"
+#include "flexstress/core/types.hpp"
+#include "flexstress/dynamics/body_model.hpp"
+#include "flexstress/dynamics/effects.hpp"
+#include "flexstress/dynamics/force_elements.hpp"
+#include "flexstress/dynamics/ground_motion.hpp"
+#include "flexstress/dynamics/joints.hpp"
+#include "flexstress/dynamics/marker.hpp"
+
+namespace flexstress {
+
+template <class... B>
+struct Bodies {};
+template <class... J>
+struct Joints {};
+template <class... F>
+struct ForceElements {};
+
+/// Coordinates of one body: R, theta, p.
+template <class Scalar, int NModes>
+struct BodyCoordinates {
+  Vec3<Scalar> position = Vec3<Scalar>::Zero();
+  EulerParameters<Scalar> theta = identity_euler_parameters<Scalar>();
+  Vec<Scalar, NModes> p = Vec<Scalar, NModes>::Zero();
+};
+
+namespace detail {
+
+template <std::size_t N>
+constexpr std::array<int, N + 1> prefix_sums(const std::array<int, N>& a) {
+  std::array<int, N + 1> s{};
+  for (std::size_t i = 0; i < N; ++i) s[i + 1] = s[i] + a[i];
+  return s;
+}
+
+template <int K, class Tuple, bool Ground = (K < 0)>
+struct modes_of {
+  static constexpr int value = std::tuple_element_t<static_cast<std::size_t>(K), Tuple>::num_modes;
+};
+template <int K, class Tuple>
+struct modes_of<K, Tuple, true> {
+  static constexpr int value = 0;
+};
+
+template <class F, std::size_t... I>
+constexpr void for_each_index(F&& f, std::index_sequence<I...>) {
+  (f(std::integral_constant<std::size_t, I>{}), ...);
+}
+
+}  // namespace detail
+
+/// Largest velocity / constraint count kept in fixed-size storage.
+inline constexpr int fixed_storage_limit = 64;
+
+template <class Scalar, class BodyList, class JointList, class EffectList = Effects<>,
+          class ForceList = ForceElements<>, class Ground = FixedGround<Scalar>>
+class Scene;
+
+template <class Scalar, class... B, class... J, class... E, class... F, class Ground>
+class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F...>, Ground> {
+ public:
+  using scalar_type = Scalar;
+  using Effects_ = Effects<E...>;
+  using BodyTuple = std::tuple<B...>;
+  static constexpr int num_bodies = sizeof...(B);
+  static constexpr int num_joints = sizeof...(J);
+  static constexpr int num_forces = sizeof...(F);
+  static constexpr std::array<int, num_bodies> body_nv{B::nv...};
+  static constexpr std::array<int, num_bodies + 1> body_offset = detail::prefix_sums(body_nv);
+  static constexpr int nv = body_offset[num_bodies];
+  static constexpr std::array<int, num_joints> joint_nc{J::equations...};
+  static constexpr std::array<int, num_joints + 1> joint_offset = detail::prefix_sums(joint_nc);
+  static constexpr int nc = joint_offset[num_joints];
+  static constexpr bool fixed_storage = nv <= fixed_storage_limit && nc <= fixed_storage_limit;
+  static constexpr int NV = fixed_storage ? nv : Eigen::Dynamic;
+  static constexpr int NC = fixed_storage ? nc : Eigen::Dynamic;
+
+  static_assert(num_bodies > 0, "a scene needs at least one body");
+  static_assert(((J::body_i < num_bodies && J::body_j < num_bodies && J::body_i >= ground &&
+                  J::body_j >= ground && J::body_i != J::body_j) &&
+                 ...),
+                "a joint refers to a body index outside the scene (or joins a body to itself)");
+  static_assert(
+      ((std::is_same_v<typename B::Kinematics, BodyKinematics<Scalar, B::num_modes>>)&&...),
+      "all bodies of a scene must use the scene's Scalar type");
+
+  template <int K>
+  using BodyType = std::tuple_element_t<static_cast<std::size_t>(K), BodyTuple>;
+  template <int K>
+  static constexpr int modes_of = detail::modes_of<K, BodyTuple>::value;
+
+  using VecV = Eigen::Matrix<Scalar, NV, 1>;
+  using VecC = Eigen::Matrix<Scalar, NC, 1>;
+  using MatVV = Eigen::Matrix<Scalar, NV, NV>;
+  using MatCV = Eigen::Matrix<Scalar, NC, NV>;
+
+  /// A joint of kind Kind with its two markers and parameters.
+  template <class Kind>
+  struct JointInstance {
+    Marker<Scalar, modes_of<Kind::body_i>> marker_i;
+    Marker<Scalar, modes_of<Kind::body_j>> marker_j;
+    typename Kind::template Params<Scalar> params{};
+  };
+  template <class Kind>
+  struct ForceInstance {
+    Marker<Scalar, modes_of<Kind::body_i>> marker_i;
+    Marker<Scalar, modes_of<Kind::body_j>> marker_j;
+    typename Kind::template Params<Scalar> params{};
+  };
+
+  // ---- model ------------------------------------------------------------------------------
+  BodyTuple bodies;
+  std::tuple<JointInstance<J>...> joints;
+  std::tuple<ForceInstance<F>...> forces;
+  Vec3<Scalar> gravity = Vec3<Scalar>(Scalar(0), Scalar(-9.81), Scalar(0));
+  Ground ground_motion{};
+
+  template <int K>
+  BodyType<K>& body() {
+    return std::get<static_cast<std::size_t>(K)>(bodies);
+  }
+  template <int K>
+  const BodyType<K>& body() const {
+    return std::get<static_cast<std::size_t>(K)>(bodies);
+  }
+  template <int K>
+  auto& joint() {
+    return std::get<static_cast<std::size_t>(K)>(joints);
+  }
+  template <int K>
+  const auto& joint() const {
+    return std::get<static_cast<std::size_t>(K)>(joints);
+  }
+  template <int K>
+  auto& force() {
+    return std::get<static_cast<std::size_t>(K)>(forces);
+  }
+
+  // ---- state ------------------------------------------------------------------------------
+  struct State {
+    Scalar t = Scalar(0);
+    std::tuple<BodyCoordinates<Scalar, B::num_modes>...> q;
+    VecV v, v_dot, a;  ///< velocities, accelerations, algorithmic accelerations (gen-alpha)
+    VecC lambda;       ///< constraint multipliers
+    State() {
+      v.setZero(nv);
+      v_dot.setZero(nv);
+      a.setZero(nv);
+      lambda.setZero(nc);
+    }
+    template <int K>
+    auto& coordinates() {
+      return std::get<static_cast<std::size_t>(K)>(q);
+    }
+    template <int K>
+    const auto& coordinates() const {
+      return std::get<static_cast<std::size_t>(K)>(q);
+    }
+    /// Velocity block of body K.
+    template <int K>
+    auto velocity() {
+      return v.template segment<body_nv[K]>(body_offset[K]);
+    }
+    template <int K>
+    auto velocity() const {
+      return v.template segment<body_nv[K]>(body_offset[K]);
+    }
+  };
+
+  // ---- workspace --------------------------------------------------------------------------
+  struct Workspace {
+    std::tuple<BodyKinematics<Scalar, B::num_modes>...> kin;
+    std::tuple<typename B::Terms...> terms;
+    std::tuple<typename B::MatV...> mass;
+    VecV force;  ///< generalized applied force: Q_e - Q_v - K p - D p_dot
+    MatCV jac;   ///< B
+    VecC phi, phi_t, conv;
+    GroundState<Scalar> ground;
+    Workspace() {
+      force.setZero(nv);
+      jac.setZero(nc, nv);
+      phi.setZero(nc);
+      phi_t.setZero(nc);
+      conv.setZero(nc);
+    }
+  };
+
+  // ---- evaluation -------------------------------------------------------------------------
+  /// Body kinematics (A, p, velocities) from the state, and the ground at time t.
+  void update_kinematics(const State& s, Workspace& w) const {
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr int K = static_cast<int>(decltype(k)::value);
+          auto& kin = std::get<K>(w.kin);
+          const auto& q = std::get<K>(s.q);
+          kin.position = q.position;
+          kin.rotation = rotation_matrix(q.theta);
+          const auto v = s.v.template segment<body_nv[K]>(body_offset[K]);
+          kin.velocity = v.template head<3>();
+          kin.omega = v.template segment<3>(3);
+          if constexpr (modes_of < K >> 0) {
+            kin.p = q.p;
+            kin.p_dot = v.template tail<modes_of<K>>();
+          }
+        },
+        std::make_index_sequence<num_bodies>{});
+    ground_motion.evaluate(s.t, w.ground);
+  }
+
+  /// Constraint values, Jacobian, explicit time derivative and convective terms at s.t (call
+  /// update_kinematics first).
+  void update_constraints(const State& s, Workspace& w) const {
+    detail::for_each_index(
+        [&](auto k) { evaluate_joint<static_cast<int>(decltype(k)::value)>(s.t, w); },
+        std::make_index_sequence<num_joints>{});
+  }
+
+  /// Mass matrix blocks and the applied generalized force (effects and force elements).
+  void update_dynamics(const State& s, Workspace& w) const {
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr int K = static_cast<int>(decltype(k)::value);
+          const auto& body = std::get<K>(bodies);
+          const auto& kin = std::get<K>(w.kin);
+          auto& terms = std::get<K>(w.terms);
+          auto& m = std::get<K>(w.mass);
+          body.compute_terms(kin, terms);
+          body.mass_matrix(kin, terms, m);
+          auto f = w.force.template segment<body_nv[K]>(body_offset[K]);
+          typename BodyType<K>::VecV fb = BodyType<K>::VecV::Zero();
+          if constexpr (Effects_::template has<Gravity>)
+            body.gravity_force(kin, terms, gravity, fb);
+          if constexpr (Effects_::template has<QuadraticVelocity>) {
+            typename BodyType<K>::VecV qv;
+            body.quadratic_velocity(kin, terms, qv);
+            fb -= qv;
+          }
+          if constexpr (modes_of < K >> 0) {
+            auto fp = fb.template tail<modes_of<K>>();
+            fp -= body.modal_stiffness().cwiseProduct(kin.p);
+            if constexpr (Effects_::template has<ModalDamping>)
+              fp -= body.modal_damping().cwiseProduct(kin.p_dot);
+          }
+          f = fb;
+        },
+        std::make_index_sequence<num_bodies>{});
+    if constexpr (Effects_::template has<SpringDampers>)
+      detail::for_each_index(
+          [&](auto k) { apply_force_element<static_cast<int>(decltype(k)::value)>(w); },
+          std::make_index_sequence<num_forces>{});
+    (void)s;
+  }
+
+  /// All of the above at the state's time.
+  void evaluate(const State& s, Workspace& w) const {
+    update_kinematics(s, w);
+    update_constraints(s, w);
+    update_dynamics(s, w);
+  }
+
+  /// y += M x with the block-diagonal mass matrix of the last update_dynamics.
+  template <class X, class Y>
+  void add_mass_times(const Workspace& w, const X& x, Y& y) const {
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr int K = static_cast<int>(decltype(k)::value);
+          y.template segment<body_nv[K]>(body_offset[K]).noalias() +=
+              std::get<K>(w.mass) * x.template segment<body_nv[K]>(body_offset[K]);
+        },
+        std::make_index_sequence<num_bodies>{});
+  }
+
+  /// Writes the block-diagonal mass matrix into m (nv x nv); other entries are left alone.
+  template <class M>
+  void mass_blocks(const Workspace& w, M& m) const {
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr int K = static_cast<int>(decltype(k)::value);
+          m.template block<body_nv[K], body_nv[K]>(body_offset[K], body_offset[K]) =
+              std::get<K>(w.mass);
+        },
+        std::make_index_sequence<num_bodies>{});
+  }
+
+  /// Adds the modal stiffness and damping (the derivatives of the elastic forces) to the
+  /// diagonal of an iteration matrix: d += k_factor K + c_factor D.
+  template <class M>
+  void add_modal_stiffness_damping(M& m, Scalar k_factor, Scalar c_factor) const {
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr int K = static_cast<int>(decltype(k)::value);
+          if constexpr (modes_of < K >> 0) {
+            const auto& body = std::get<K>(bodies);
+            constexpr int o = body_offset[K] + 6;
+            for (int i = 0; i < modes_of<K>; ++i) {
+              Scalar d = k_factor * body.modal_stiffness()(i);
+              if constexpr (Effects_::template has<ModalDamping>)
+                d += c_factor * body.modal_damping()(i);
+              m(o + i, o + i) += d;
+            }
+          }
+        },
+        std::make_index_sequence<num_bodies>{});
+  }
+
+  /// Moves the coordinates along a velocity-space increment dx (Lie-group update):
+  /// R += dx_R, theta = theta (x) exp(dx_w), p += dx_p; theta is renormalized.
+  template <class X>
+  void integrate(State& s, const X& dx) const {
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr int K = static_cast<int>(decltype(k)::value);
+          auto& q = std::get<K>(s.q);
+          const auto d = dx.template segment<body_nv[K]>(body_offset[K]);
+          q.position += d.template head<3>();
+          q.theta = normalized<Scalar>(compose<Scalar>(
+              q.theta, exp_rotation<Scalar>(Vec3<Scalar>(d.template segment<3>(3)))));
+          if constexpr (modes_of < K >> 0) q.p += d.template tail<modes_of<K>>();
+        },
+        std::make_index_sequence<num_bodies>{});
+  }
+
+  /// Largest modal angular frequency of the scene's flexible bodies.
+  Scalar max_modal_frequency() const {
+    Scalar m = Scalar(0);
+    detail::for_each_index(
+        [&](auto k) { m = std::max(m, std::get<decltype(k)::value>(bodies).max_frequency()); },
+        std::make_index_sequence<num_bodies>{});
+    return m;
+  }
+
+  // ---- energies (for tests and monitors) ---------------------------------------------------
+  struct Energy {
+    Scalar kinetic = Scalar(0), gravity = Scalar(0), elastic = Scalar(0), springs = Scalar(0);
+    Scalar total() const { return kinetic + gravity + elastic + springs; }
+  };
+  /// Energies at the state (call update_kinematics first).
+  Energy energy(const Workspace& w) const {
+    Energy e;
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr std::size_t K = decltype(k)::value;
+          const auto& body = std::get<K>(bodies);
+          const auto& kin = std::get<K>(w.kin);
+          e.kinetic += body.kinetic_energy(kin);
+          e.elastic += body.elastic_energy(kin);
+          if constexpr (Effects_::template has<Gravity>)
+            e.gravity += body.gravity_potential(kin, gravity);
+        },
+        std::make_index_sequence<num_bodies>{});
+    if constexpr (Effects_::template has<SpringDampers>)
+      detail::for_each_index(
+          [&](auto k) {
+            constexpr int K = static_cast<int>(decltype(k)::value);
+            using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<F...>>;
+            const auto& inst = std::get<K>(forces);
+            MarkerEval<Scalar, modes_of<Kind::body_i>> mi;
+            MarkerEval<Scalar, modes_of<Kind::body_j>> mj;
+            mi.evaluate(inst.marker_i, kinematics<Kind::body_i>(w));
+            mj.evaluate(inst.marker_j, kinematics<Kind::body_j>(w));
+            e.springs += Kind::energy(inst.params, mi, mj);
+          },
+          std::make_index_sequence<num_forces>{});
+    return e;
+  }
+
+  /// Kinematics of body K (the ground for K = -1) in the workspace.
+  template <int K>
+  const BodyKinematics<Scalar, modes_of<K>>& kinematics(const Workspace& w) const {
+    if constexpr (K < 0) {
+      return w.ground.kinematics;
+    } else {
+      return std::get<static_cast<std::size_t>(K)>(w.kin);
+    }
+  }
+
+  /// Name of joint k, for messages ("joint 3 (prismatic)").
+  static const char* joint_kind_name(int k) {
+    static constexpr const char* names[] = {J::name..., ""};
+    return names[k];
+  }
+  /// Which joint owns constraint row r.
+  static int joint_of_row(int r) {
+    for (int k = 0; k < num_joints; ++k)
+      if (r < joint_offset[static_cast<std::size_t>(k) + 1]) return k;
+    return -1;
+  }
+
+ private:
+  template <int K>
+  void evaluate_joint(Scalar t, Workspace& w) const {
+    using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<J...>>;
+    constexpr int bi = Kind::body_i, bj = Kind::body_j;
+    constexpr int row0 = joint_offset[K];
+    const auto& inst = std::get<static_cast<std::size_t>(K)>(joints);
+    MarkerEval<Scalar, modes_of<bi>> mi;
+    MarkerEval<Scalar, modes_of<bj>> mj;
+    mi.evaluate(inst.marker_i, kinematics<bi>(w));
+    mj.evaluate(inst.marker_j, kinematics<bj>(w));
+    Kind::evaluate(inst.params, mi, mj, t, [&](int r, const auto& row) {
+      const int i = row0 + r;
+      w.phi(i) = row.phi;
+      Scalar phi_t = row.phi_t, conv = row.conv;
+      if constexpr (bi >= 0) {
+        w.jac.template block<1, body_nv[bi]>(i, body_offset[bi]) = row.bi;
+      } else if constexpr (Ground::moving) {
+        phi_t += row.bi.dot(ground_velocity(w));
+        conv += row.bi.dot(w.ground.acceleration);
+      }
+      if constexpr (bj >= 0) {
+        w.jac.template block<1, body_nv[bj]>(i, body_offset[bj]) = row.bj;
+      } else if constexpr (Ground::moving) {
+        phi_t += row.bj.dot(ground_velocity(w));
+        conv += row.bj.dot(w.ground.acceleration);
+      }
+      w.phi_t(i) = phi_t;
+      w.conv(i) = conv;
+    });
+  }
+
+  static Vec6<Scalar> ground_velocity(const Workspace& w) {
+    Vec6<Scalar> v;
+    v << w.ground.kinematics.velocity, w.ground.kinematics.omega;
+    return v;
+  }
+
+  template <int K>
+  void apply_force_element(Workspace& w) const {
+    using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<F...>>;
+    constexpr int bi = Kind::body_i, bj = Kind::body_j;
+    const auto& inst = std::get<static_cast<std::size_t>(K)>(forces);
+    MarkerEval<Scalar, modes_of<bi>> mi;
+    MarkerEval<Scalar, modes_of<bj>> mj;
+    mi.evaluate(inst.marker_i, kinematics<bi>(w));
+    mj.evaluate(inst.marker_j, kinematics<bj>(w));
+    const Vec3<Scalar> f = Kind::force(inst.params, mi, mj);
+    if constexpr (bj >= 0)
+      w.force.template segment<body_nv[bj]>(body_offset[bj]) += mj.row_origin(f).transpose();
+    if constexpr (bi >= 0)
+      w.force.template segment<body_nv[bi]>(body_offset[bi]) -= mi.row_origin(f).transpose();
+  }
+};
+
+}  // namespace flexstress

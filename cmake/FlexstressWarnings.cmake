@@ -11,3 +11,17 @@ if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_link_options(flexstress_dev_flags INTERFACE -fsanitize=${FLEXSTRESS_SANITIZE})
   endif()
 endif()
+
+# The precompute (FE kernel, reductions, sub-model influence matrices) compiled once, in one
+# object library, and declared `extern template` in every other translation unit of the tests,
+# examples and benchmarks (see include/flexstress/precompute_instances.hpp). Without this each
+# translation unit that calls the precompute spends tens of seconds instantiating it again.
+add_library(flexstress_precompute_instances OBJECT
+  "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances.cpp")
+target_link_libraries(flexstress_precompute_instances PUBLIC flexstress::flexstress flexstress_dev_flags)
+
+function(flexstress_use_precompute_instances target)
+  target_sources(${target} PRIVATE $<TARGET_OBJECTS:flexstress_precompute_instances>)
+  target_compile_definitions(${target} PRIVATE FLEXSTRESS_EXTERN_PRECOMPUTE)
+  target_compile_options(${target} PRIVATE -include flexstress/precompute_instances.hpp)
+endfunction()

@@ -26,6 +26,11 @@
 #include "flexstress/fe/mesh.hpp"
 #include "flexstress/fe/rigid_body_modes.hpp"
 #include "flexstress/fe/static_solver.hpp"
+#include "flexstress/fe/vtk_writer.hpp"
+#include "flexstress/fe/stress_recovery.hpp"
+#include "flexstress/fe/stress_measures.hpp"
+#include "flexstress/fe/rhs_attachment_mesh.hpp"
+#include "flexstress/fe/brick_locator.hpp"
 
 #include "flexstress/fatigue/class_grid.hpp"
 #include "flexstress/fatigue/cycle.hpp"

@@ -6,6 +6,7 @@
 
 #include <Eigen/SparseCore>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/fe/beam3d.hpp"
 #include "flexstress/fe/boundary_conditions.hpp"
@@ -27,7 +28,8 @@ void scatter(std::vector<Eigen::Triplet<double>>& trip, const ElementMatrix& ke,
       if (ke(i, j) != 0.0) trip.emplace_back(dof_of_row[i], dof_of_row[j], ke(i, j));
 }
 
-inline std::array<Index, 12> beam_dofs(const DofMap& dofs, const BeamElement& b) {
+FLEXSTRESS_PRECOMPUTE
+std::array<Index, 12> beam_dofs(const DofMap& dofs, const BeamElement& b) {
   std::array<Index, 12> d{};
   for (int n = 0; n < 2; ++n)
     for (int c = 0; c < 6; ++c)
@@ -35,7 +37,8 @@ inline std::array<Index, 12> beam_dofs(const DofMap& dofs, const BeamElement& b)
   return d;
 }
 
-inline std::array<Index, 24> hex8_dofs(const DofMap& dofs, const Hex8Element& h) {
+FLEXSTRESS_PRECOMPUTE
+std::array<Index, 24> hex8_dofs(const DofMap& dofs, const Hex8Element& h) {
   std::array<Index, 24> d{};
   for (int n = 0; n < 8; ++n)
     for (int c = 0; c < 3; ++c)
@@ -46,7 +49,8 @@ inline std::array<Index, 24> hex8_dofs(const DofMap& dofs, const Hex8Element& h)
 }  // namespace detail
 
 /// Global stiffness over all nodal DOFs. Fails on degenerate bricks (naming the element).
-inline Result<SparseMatrixd> assemble_stiffness(const Mesh& mesh, const DofMap& dofs) {
+FLEXSTRESS_PRECOMPUTE
+Result<SparseMatrixd> assemble_stiffness(const Mesh& mesh, const DofMap& dofs) {
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(mesh.beams().size() * 144 + mesh.hexes().size() * 576);
   for (const auto& b : mesh.beams()) {
@@ -67,8 +71,9 @@ inline Result<SparseMatrixd> assemble_stiffness(const Mesh& mesh, const DofMap& 
 }
 
 /// Global mass over all nodal DOFs (beams, bricks, point masses).
-inline Result<SparseMatrixd> assemble_mass(const Mesh& mesh, const DofMap& dofs,
-                                           const MassOptions& options = {}) {
+FLEXSTRESS_PRECOMPUTE
+Result<SparseMatrixd> assemble_mass(const Mesh& mesh, const DofMap& dofs,
+                                    const MassOptions& options = {}) {
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(mesh.beams().size() * 144 + mesh.hexes().size() * 192);
   for (const auto& b : mesh.beams()) {
@@ -111,8 +116,9 @@ struct AssembledModel {
 };
 
 /// Numbers the DOFs, builds the constraint transformation and assembles K and M.
-inline Result<AssembledModel> assemble(const Mesh& mesh, const BoundaryConditions& bc = {},
-                                       const MassOptions& mass_options = {}) {
+FLEXSTRESS_PRECOMPUTE
+Result<AssembledModel> assemble(const Mesh& mesh, const BoundaryConditions& bc = {},
+                                const MassOptions& mass_options = {}) {
   auto dofs = DofMap::build(mesh);
   if (!dofs) return dofs.error();
   auto ct = ConstraintTransform::build(mesh, *dofs, bc);
@@ -138,7 +144,8 @@ struct NodalLoad {
   double value = 0.0;
 };
 
-inline Result<VectorXd> load_vector(const DofMap& dofs, const std::vector<NodalLoad>& loads) {
+FLEXSTRESS_PRECOMPUTE
+Result<VectorXd> load_vector(const DofMap& dofs, const std::vector<NodalLoad>& loads) {
   VectorXd f = VectorXd::Zero(dofs.size());
   for (std::size_t i = 0; i < loads.size(); ++i) {
     const auto& l = loads[i];

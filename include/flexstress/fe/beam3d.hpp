@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/fe/beam_section.hpp"
 #include "flexstress/fe/mass_options.hpp"
@@ -30,8 +31,8 @@ using Vector12d = Eigen::Matrix<double, 12, 1>;
 using Matrix3x12d = Eigen::Matrix<double, 3, 12>;
 
 /// Rows are the local axes (x, y, z) in global coordinates: v_local = R v_global.
-inline Matrix3d beam_local_axes(const Vector3d& x0, const Vector3d& x1,
-                                const Vector3d& orientation) {
+FLEXSTRESS_PRECOMPUTE
+Matrix3d beam_local_axes(const Vector3d& x0, const Vector3d& x1, const Vector3d& orientation) {
   const Vector3d ex = (x1 - x0).normalized();
   Vector3d ref = orientation;
   if (ref.squaredNorm() == 0.0)
@@ -46,15 +47,17 @@ inline Matrix3d beam_local_axes(const Vector3d& x0, const Vector3d& x1,
 }
 
 /// 12x12 block-diagonal rotation global -> local for the element DOF vector.
-inline Matrix12d beam_dof_rotation(const Matrix3d& r) {
+FLEXSTRESS_PRECOMPUTE
+Matrix12d beam_dof_rotation(const Matrix3d& r) {
   Matrix12d t = Matrix12d::Zero();
   for (int b = 0; b < 4; ++b) t.block<3, 3>(3 * b, 3 * b) = r;
   return t;
 }
 
 /// Local-axes stiffness (Przemieniecki). phi_y, phi_z: Timoshenko shear parameters (0 = EB).
-inline Matrix12d beam_local_stiffness(const Material& mat, const BeamSection& s, double length,
-                                      double phi_y, double phi_z) {
+FLEXSTRESS_PRECOMPUTE
+Matrix12d beam_local_stiffness(const Material& mat, const BeamSection& s, double length,
+                               double phi_y, double phi_z) {
   const double e = mat.youngs_modulus, g = mat.shear_modulus(), l = length;
   const double l2 = l * l, l3 = l2 * l;
   Matrix12d k = Matrix12d::Zero();
@@ -92,7 +95,8 @@ inline Matrix12d beam_local_stiffness(const Material& mat, const BeamSection& s,
 
 /// Local-axes interpolation at xi in [0, 1]: centre-line displacement n_u (3x12) and section
 /// rotation n_r (3x12), both in local axes, acting on the local element DOF vector.
-inline void beam_local_interpolation(double xi, double length, Matrix3x12d& n_u, Matrix3x12d& n_r) {
+FLEXSTRESS_PRECOMPUTE
+void beam_local_interpolation(double xi, double length, Matrix3x12d& n_u, Matrix3x12d& n_r) {
   const double l = length, x2 = xi * xi, x3 = x2 * xi;
   const double h1 = 1 - 3 * x2 + 2 * x3, h2 = l * (xi - 2 * x2 + x3), h3 = 3 * x2 - 2 * x3,
                h4 = l * (-x2 + x3);
@@ -166,7 +170,8 @@ struct BeamGeometry {
 };
 
 /// Global-axes stiffness matrix of a beam element.
-inline Matrix12d beam_stiffness(const Mesh& mesh, const BeamElement& b) {
+FLEXSTRESS_PRECOMPUTE
+Matrix12d beam_stiffness(const Mesh& mesh, const BeamElement& b) {
   const BeamGeometry geo(mesh, b);
   const Material& mat = mesh.material(b.material);
   const BeamSection& s = mesh.section(b.section);
@@ -183,7 +188,8 @@ inline Matrix12d beam_stiffness(const Mesh& mesh, const BeamElement& b) {
 /// Global-axes mass matrix of a beam element, integrated from the interpolation: kinetic energy
 /// 1/2 integral rho (A |u_dot|^2 + theta_dot^T J_s theta_dot) dx, J_s the polar tensor of the
 /// section (tr(I_s) 1 - I_s). Without rotary inertia J_s keeps only torsion about the axis.
-inline Matrix12d beam_mass(const Mesh& mesh, const BeamElement& b, const MassOptions& opt) {
+FLEXSTRESS_PRECOMPUTE
+Matrix12d beam_mass(const Mesh& mesh, const BeamElement& b, const MassOptions& opt) {
   const BeamGeometry geo(mesh, b);
   const double rho = mesh.material(b.material).density;
   const BeamSection& s = mesh.section(b.section);
@@ -226,8 +232,9 @@ struct BeamSectionForces {
   double normal = 0.0, torque = 0.0, moment_y = 0.0, moment_z = 0.0;
 };
 
-inline BeamSectionForces beam_section_forces(const Mesh& mesh, const BeamElement& b,
-                                             const Vector12d& u_global, double xi) {
+FLEXSTRESS_PRECOMPUTE
+BeamSectionForces beam_section_forces(const Mesh& mesh, const BeamElement& b,
+                                      const Vector12d& u_global, double xi) {
   const BeamGeometry geo(mesh, b);
   const Material& mat = mesh.material(b.material);
   const BeamSection& s = mesh.section(b.section);
@@ -248,8 +255,9 @@ inline BeamSectionForces beam_section_forces(const Mesh& mesh, const BeamElement
 
 /// Axial (normal) stress at a fibre (y, z) of the section (local axes), at xi:
 /// sigma_xx = N / A - Mz y / iz + My z / iy, i.e. E (u' - y v'' - z w'').
-inline double beam_fibre_stress(const Mesh& mesh, const BeamElement& b, const Vector12d& u_global,
-                                double xi, double y, double z) {
+FLEXSTRESS_PRECOMPUTE
+double beam_fibre_stress(const Mesh& mesh, const BeamElement& b, const Vector12d& u_global,
+                         double xi, double y, double z) {
   const BeamSection& s = mesh.section(b.section);
   const BeamSectionForces f = beam_section_forces(mesh, b, u_global, xi);
   return f.normal / s.area - f.moment_z * y / s.iz + f.moment_y * z / s.iy;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/fe/mesh.hpp"
 
@@ -41,7 +42,8 @@ struct BeamLine {
 };
 
 /// Adds the nodes and beams of `spec` to `mesh`. Positions outside [0, L] are clamped into it.
-inline BeamLine add_beam_line(Mesh& mesh, const BeamLineSpec& spec) {
+FLEXSTRESS_PRECOMPUTE
+BeamLine add_beam_line(Mesh& mesh, const BeamLineSpec& spec) {
   const Vector3d d = spec.end - spec.start;
   const double length = d.norm();
   std::vector<double> s;

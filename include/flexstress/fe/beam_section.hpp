@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 
 namespace flexstress::fe {
@@ -35,7 +36,8 @@ struct BeamSection {
 /// shear areas are those of the webs, 2 (h - t) t for y and 2 (b - t) t for z.
 /// Crane check (paper, Table 2): 150 x 100 x 4 mm gives A = 1.936e-3 m^2, iz = 6.17e-6 m^4,
 /// iy = 3.29e-6 m^4.
-inline BeamSection rectangular_hollow_section(double h, double b, double t) {
+FLEXSTRESS_PRECOMPUTE
+BeamSection rectangular_hollow_section(double h, double b, double t) {
   BeamSection s;
   const double hi = h - 2.0 * t, bi = b - 2.0 * t;
   s.area = h * b - hi * bi;
@@ -52,7 +54,8 @@ inline BeamSection rectangular_hollow_section(double h, double b, double t) {
 
 /// Solid rectangle h (along y) by b (along z); torsion constant by the series approximation
 /// J = b' h'^3 (1/3 - 0.21 h'/b' (1 - h'^4 / (12 b'^4))) with h' the smaller side (Roark).
-inline BeamSection rectangular_section(double h, double b) {
+FLEXSTRESS_PRECOMPUTE
+BeamSection rectangular_section(double h, double b) {
   BeamSection s;
   s.area = h * b;
   s.iz = b * h * h * h / 12.0;
@@ -67,7 +70,8 @@ inline BeamSection rectangular_section(double h, double b) {
 }
 
 /// Checks that A, iy, iz, J are positive and finite and shear areas non-negative.
-inline Status validate(const BeamSection& s, const std::string& where) {
+FLEXSTRESS_PRECOMPUTE
+Status validate(const BeamSection& s, const std::string& where) {
   const double positive[] = {s.area, s.iy, s.iz, s.torsion_constant};
   const char* names[] = {"area", "iy", "iz", "torsion constant"};
   for (int i = 0; i < 4; ++i)

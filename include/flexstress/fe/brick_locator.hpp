@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/fe/hex8.hpp"
@@ -38,6 +39,7 @@ class BrickLocator {
   /// [-1, 1] (in natural coordinates) a point may lie and still count as inside, so that points
   /// on faces are found despite round-off. Fails if the mesh has no bricks, does not validate
   /// or has a non-finite coordinate.
+  FLEXSTRESS_PRECOMPUTE
   static Result<BrickLocator> build(const Mesh& mesh, double tolerance = 1e-8) {
     if (Status s = mesh.validate(); !s) return s.error();
     const auto& hexes = mesh.hexes();

@@ -19,6 +19,7 @@
 
 #include <Eigen/SparseCore>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/skew.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
@@ -37,6 +38,7 @@ class ConstraintTransform {
   /// Builds T and G. Fails, naming the node, DOF and link, for prescribed DOFs on nodes that do
   /// not exist or lack the component, DOFs prescribed twice, prescribed slave DOFs, nodes that
   /// are slaves of two links, and loops of rigid links.
+  FLEXSTRESS_PRECOMPUTE
   static Result<ConstraintTransform> build(const Mesh& mesh, const DofMap& dofs,
                                            const BoundaryConditions& bc) {
     ConstraintTransform ct;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/fe/mesh.hpp"
@@ -18,6 +19,7 @@ namespace flexstress::fe {
 class DofMap {
  public:
   /// Numbers the DOFs of a validated mesh. Fails if the mesh does not validate.
+  FLEXSTRESS_PRECOMPUTE
   static Result<DofMap> build(const Mesh& mesh) {
     if (Status s = mesh.validate(); !s) return s.error();
     const auto nn = static_cast<std::size_t>(mesh.num_nodes());

@@ -20,6 +20,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/fe/constraint_transform.hpp"
 
@@ -59,8 +60,9 @@ inline double default_shift(const SparseMatrixd& k, const SparseMatrixd& m) {
   return tm > 0.0 ? 1e-8 * tk / tm : 1e-8 * tk;
 }
 
-inline Result<EigenSolution> eigen_dense(const SparseMatrixd& k, const SparseMatrixd& m, int p,
-                                         double sigma) {
+FLEXSTRESS_PRECOMPUTE
+Result<EigenSolution> eigen_dense(const SparseMatrixd& k, const SparseMatrixd& m, int p,
+                                  double sigma) {
   const MatrixXd kd(k), md(m);
   const MatrixXd b = kd + sigma * md;
   Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> es(md, b, Eigen::ComputeEigenvectors);
@@ -92,14 +94,16 @@ inline Result<EigenSolution> eigen_dense(const SparseMatrixd& k, const SparseMat
 }
 
 /// Number of eigenvalues below mu (Sturm sequence: negative pivots of K - mu M).
-inline Index count_eigenvalues_below(const SparseMatrixd& k, const SparseMatrixd& m, double mu) {
+FLEXSTRESS_PRECOMPUTE
+Index count_eigenvalues_below(const SparseMatrixd& k, const SparseMatrixd& m, double mu) {
   Eigen::SimplicialLDLT<SparseMatrixd> f(SparseMatrixd(k - mu * m));
   if (f.info() != Eigen::Success) return -1;
   return static_cast<Index>((f.vectorD().array() < 0.0).count());
 }
 
-inline Result<EigenSolution> eigen_subspace(const SparseMatrixd& k, const SparseMatrixd& m,
-                                            const EigenOptions& opt, double sigma) {
+FLEXSTRESS_PRECOMPUTE
+Result<EigenSolution> eigen_subspace(const SparseMatrixd& k, const SparseMatrixd& m,
+                                     const EigenOptions& opt, double sigma) {
   const Index n = k.rows();
   const int p = opt.num_modes;
   const Index q = std::min<Index>(n, std::max<Index>(2 * p, p + 8));
@@ -173,8 +177,9 @@ inline Result<EigenSolution> eigen_subspace(const SparseMatrixd& k, const Sparse
 }  // namespace detail
 
 /// Lowest `options.num_modes` eigenpairs of K x = lambda M x.
-inline Result<EigenSolution> solve_eigen(const SparseMatrixd& k, const SparseMatrixd& m,
-                                         const EigenOptions& options) {
+FLEXSTRESS_PRECOMPUTE
+Result<EigenSolution> solve_eigen(const SparseMatrixd& k, const SparseMatrixd& m,
+                                  const EigenOptions& options) {
   const Index n = k.rows();
   if (k.cols() != n || m.rows() != n || m.cols() != n)
     return make_error(ErrorCode::size_mismatch, "eigen solve: K is ", k.rows(), "x", k.cols(),

@@ -23,6 +23,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/fe/constraint_transform.hpp"
 #include "flexstress/fe/eigen_solver.hpp"
@@ -65,8 +66,9 @@ class SparseLdltShiftInvert {
 /// free-free models), options.tolerance and options.max_iterations (restarts); options.method
 /// and dense_limit are ignored. Preconditions as for solve_eigen: K symmetric positive
 /// semi-definite, M symmetric positive semi-definite, K + |sigma| M positive definite.
-inline Result<EigenSolution> solve_eigen_spectra(const SparseMatrixd& k, const SparseMatrixd& m,
-                                                 const EigenOptions& options) {
+FLEXSTRESS_PRECOMPUTE
+Result<EigenSolution> solve_eigen_spectra(const SparseMatrixd& k, const SparseMatrixd& m,
+                                          const EigenOptions& options) {
   const Index n = k.rows();
   if (k.cols() != n || m.rows() != n || m.cols() != n)
     return make_error(ErrorCode::size_mismatch, "Spectra eigen solve: K is ", k.rows(), "x",

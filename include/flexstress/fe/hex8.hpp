@@ -18,8 +18,10 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/fe/mass_options.hpp"
@@ -44,7 +46,8 @@ inline constexpr double node_xi[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, 
 inline constexpr double gauss = 0.57735026918962576451;
 
 /// Shape functions at a natural point.
-inline Eigen::Matrix<double, 8, 1> shape(const Vector3d& xi) {
+FLEXSTRESS_PRECOMPUTE
+Eigen::Matrix<double, 8, 1> shape(const Vector3d& xi) {
   Eigen::Matrix<double, 8, 1> n;
   for (int a = 0; a < 8; ++a)
     n(a) = 0.125 * (1 + node_xi[a][0] * xi(0)) * (1 + node_xi[a][1] * xi(1)) *
@@ -53,7 +56,8 @@ inline Eigen::Matrix<double, 8, 1> shape(const Vector3d& xi) {
 }
 
 /// Derivatives dN_a/dxi_j (3 x 8) at a natural point.
-inline Eigen::Matrix<double, 3, 8> shape_derivatives(const Vector3d& xi) {
+FLEXSTRESS_PRECOMPUTE
+Eigen::Matrix<double, 3, 8> shape_derivatives(const Vector3d& xi) {
   Eigen::Matrix<double, 3, 8> d;
   for (int a = 0; a < 8; ++a) {
     const double s = node_xi[a][0], t = node_xi[a][1], u = node_xi[a][2];
@@ -91,16 +95,29 @@ Eigen::Matrix<double, 6, 3 * K> strain_matrix(const Eigen::Matrix<double, 3, K>&
 /// Strain matrix of the nine incompatible modes at xi (TBW form): derivatives of
 /// (1 - xi_k^2) mapped with the centre Jacobian inverse j0_inv_t = J0^-T and scaled by
 /// det J0 / det J.
-inline Eigen::Matrix<double, 6, 9> incompatible_strain_matrix(const Vector3d& xi,
-                                                              const Matrix3d& j0_inv_t,
-                                                              double det_ratio) {
-  Eigen::Matrix<double, 3, 3> dp = Eigen::Matrix<double, 3, 3>::Zero();  // dP_k / dxi_j
-  for (int k = 0; k < 3; ++k) dp(k, k) = -2.0 * xi(k);
-  const Eigen::Matrix<double, 3, 3> dx = det_ratio * (j0_inv_t * dp);
+FLEXSTRESS_PRECOMPUTE
+Eigen::Matrix<double, 6, 9> incompatible_strain_matrix(const Vector3d& xi, const Matrix3d& j0_inv_t,
+                                                       double det_ratio) {
+  // dP_k/dxi_j = -2 xi_k delta_jk, so the Cartesian derivatives of mode k are a column of J0^-T.
+  Eigen::Matrix<double, 3, 3> dx;
+  for (int k = 0; k < 3; ++k) dx.col(k) = (-2.0 * xi(k) * det_ratio) * j0_inv_t.col(k);
   return strain_matrix<3>(dx);
 }
 
 }  // namespace hex8
+
+/// J^-T of a 3x3 Jacobian by cofactors, cof(J) / det(J). (Also sidesteps false
+/// maybe-uninitialized warnings of GCC 12 on Eigen's Inverse expression at -O1.)
+FLEXSTRESS_PRECOMPUTE
+Matrix3d inverse_transpose(const Matrix3d& j) {
+  Matrix3d c;
+  c.col(0) = j.col(1).cross(j.col(2));
+  c.col(1) = j.col(2).cross(j.col(0));
+  c.col(2) = j.col(0).cross(j.col(1));
+  // Columns of J are a, b, c; rows of J^-1 are (b x c, c x a, a x b) / det, so J^-T has them
+  // as columns.
+  return c / j.col(0).dot(c.col(0));
+}
 
 /// Everything an element integration needs, computed once per element.
 struct Hex8Kinematics {
@@ -112,7 +129,8 @@ struct Hex8Kinematics {
 
 /// Jacobian checks and Gauss-point kinematics. Fails for inverted or degenerate bricks
 /// (non-positive Jacobian determinant at a Gauss point or the centre), naming the element.
-inline Result<Hex8Kinematics> hex8_kinematics(const Hex8Coordinates& x, Index element_id) {
+FLEXSTRESS_PRECOMPUTE
+Result<Hex8Kinematics> hex8_kinematics(const Hex8Coordinates& x, Index element_id) {
   Hex8Kinematics k;
   const double size = (x.rowwise().maxCoeff() - x.rowwise().minCoeff()).norm();
   const double tiny = 1e-12 * size * size * size;
@@ -125,7 +143,7 @@ inline Result<Hex8Kinematics> hex8_kinematics(const Hex8Coordinates& x, Index el
     return make_error(ErrorCode::degenerate_element, "hex8 element ", element_id,
                       ": Jacobian determinant ", k.det_j0,
                       " at the centre is not positive (inverted, flat or mis-ordered nodes)");
-  k.j0_inv_t = j0.inverse().transpose();
+  k.j0_inv_t = inverse_transpose(j0);
   for (int g = 0; g < 8; ++g) {
     const Vector3d xi = hex8::gauss_point(g);
     const Matrix3d j = jacobian(xi);
@@ -135,7 +153,7 @@ inline Result<Hex8Kinematics> hex8_kinematics(const Hex8Coordinates& x, Index el
                         ": Jacobian determinant ", det, " at Gauss point ", g,
                         " is not positive (inverted or badly distorted element)");
     k.det_j[static_cast<std::size_t>(g)] = det;
-    const Eigen::Matrix<double, 3, 8> dx = j.inverse().transpose() * hex8::shape_derivatives(xi);
+    const Eigen::Matrix<double, 3, 8> dx = inverse_transpose(j) * hex8::shape_derivatives(xi);
     k.b[static_cast<std::size_t>(g)] = hex8::strain_matrix<8>(dx);
   }
   return k;
@@ -148,9 +166,9 @@ struct Hex8Condensation {
 
 namespace detail {
 // Stiffness blocks of the incompatible-mode element.
-inline void hex8_incompatible_blocks(const Hex8Kinematics& k, const Matrix6d& d, Matrix24d& kuu,
-                                     Eigen::Matrix<double, 24, 9>& kua,
-                                     Eigen::Matrix<double, 9, 9>& kaa) {
+FLEXSTRESS_PRECOMPUTE
+void hex8_incompatible_blocks(const Hex8Kinematics& k, const Matrix6d& d, Matrix24d& kuu,
+                              Eigen::Matrix<double, 24, 9>& kua, Eigen::Matrix<double, 9, 9>& kaa) {
   kuu.setZero();
   kua.setZero();
   kaa.setZero();
@@ -168,8 +186,9 @@ inline void hex8_incompatible_blocks(const Hex8Kinematics& k, const Matrix6d& d,
 }  // namespace detail
 
 /// Element stiffness (24 x 24) in global axes.
-inline Result<Matrix24d> hex8_stiffness(const Hex8Coordinates& x, const Material& mat,
-                                        Hex8Formulation formulation, Index element_id) {
+FLEXSTRESS_PRECOMPUTE
+Result<Matrix24d> hex8_stiffness(const Hex8Coordinates& x, const Material& mat,
+                                 Hex8Formulation formulation, Index element_id) {
   auto kin = hex8_kinematics(x, element_id);
   if (!kin) return kin.error();
   const Matrix6d d = elasticity_matrix(mat);
@@ -189,8 +208,9 @@ inline Result<Matrix24d> hex8_stiffness(const Hex8Coordinates& x, const Material
 
 /// Consistent mass rho integral N^T N dV (2x2x2 Gauss, exact for the trilinear field on a
 /// parallelepiped), or its row-sum lumped diagonal.
-inline Result<Matrix24d> hex8_mass(const Hex8Coordinates& x, double density, MassLumping lumping,
-                                   Index element_id) {
+FLEXSTRESS_PRECOMPUTE
+Result<Matrix24d> hex8_mass(const Hex8Coordinates& x, double density, MassLumping lumping,
+                            Index element_id) {
   auto kin = hex8_kinematics(x, element_id);
   if (!kin) return kin.error();
   Eigen::Matrix<double, 8, 8> m = Eigen::Matrix<double, 8, 8>::Zero();
@@ -212,9 +232,9 @@ inline Result<Matrix24d> hex8_mass(const Hex8Coordinates& x, double density, Mas
 
 /// Scalar (per-direction) consistent mass matrix rho integral N_a N_b dV (8 x 8): the full mass
 /// is this matrix times the 3x3 identity. Used for inertia integrals (nodal-based FFRF).
-inline Result<Eigen::Matrix<double, 8, 8>> hex8_scalar_mass(const Hex8Coordinates& x,
-                                                            double density, MassLumping lumping,
-                                                            Index element_id) {
+FLEXSTRESS_PRECOMPUTE
+Result<Eigen::Matrix<double, 8, 8>> hex8_scalar_mass(const Hex8Coordinates& x, double density,
+                                                     MassLumping lumping, Index element_id) {
   auto full = hex8_mass(x, density, lumping, element_id);
   if (!full) return full.error();
   Eigen::Matrix<double, 8, 8> m;
@@ -226,10 +246,10 @@ inline Result<Eigen::Matrix<double, 8, 8>> hex8_scalar_mass(const Hex8Coordinate
 /// Linear operator from element displacements to the stress at natural point xi:
 /// sigma = D (B(xi) u_e + B_alpha(xi) alpha(u_e)). For incompatible modes the condensed modes are
 /// recovered from u_e exactly as in the stiffness condensation.
-inline Result<Hex8StressOperator> hex8_stress_operator(const Hex8Coordinates& x,
-                                                       const Material& mat,
-                                                       Hex8Formulation formulation,
-                                                       const Vector3d& xi, Index element_id) {
+FLEXSTRESS_PRECOMPUTE
+Result<Hex8StressOperator> hex8_stress_operator(const Hex8Coordinates& x, const Material& mat,
+                                                Hex8Formulation formulation, const Vector3d& xi,
+                                                Index element_id) {
   auto kin = hex8_kinematics(x, element_id);
   if (!kin) return kin.error();
   const Matrix6d d = elasticity_matrix(mat);
@@ -239,7 +259,7 @@ inline Result<Hex8StressOperator> hex8_stress_operator(const Hex8Coordinates& x,
     return make_error(ErrorCode::degenerate_element, "hex8 element ", element_id,
                       ": Jacobian determinant ", det, " at the stress point is not positive");
   const Eigen::Matrix<double, 6, 24> b = hex8::strain_matrix<8>(
-      Eigen::Matrix<double, 3, 8>(j.inverse().transpose() * hex8::shape_derivatives(xi)));
+      Eigen::Matrix<double, 3, 8>(inverse_transpose(j) * hex8::shape_derivatives(xi)));
   if (formulation == Hex8Formulation::full_integration) return Hex8StressOperator(d * b);
   Matrix24d kuu;
   Eigen::Matrix<double, 24, 9> kua;
@@ -255,8 +275,9 @@ inline Result<Hex8StressOperator> hex8_stress_operator(const Hex8Coordinates& x,
 /// Returns the natural coordinates whether or not the point lies inside; check
 /// hex8_contains(). Fails only if Newton does not converge (point far outside a distorted
 /// element).
-inline Result<Vector3d> hex8_natural_coordinates(const Hex8Coordinates& x, const Vector3d& p,
-                                                 Index element_id) {
+FLEXSTRESS_PRECOMPUTE
+Result<Vector3d> hex8_natural_coordinates(const Hex8Coordinates& x, const Vector3d& p,
+                                          Index element_id) {
   Vector3d xi = Vector3d::Zero();
   const double size = (x.rowwise().maxCoeff() - x.rowwise().minCoeff()).norm();
   for (int it = 0; it < 50; ++it) {
@@ -279,7 +300,8 @@ inline bool hex8_contains(const Vector3d& xi, double tolerance = 1e-9) {
 }
 
 /// Coordinates of a brick's nodes from the mesh.
-inline Hex8Coordinates hex8_coordinates(const Mesh& mesh, const Hex8Element& h) {
+FLEXSTRESS_PRECOMPUTE
+Hex8Coordinates hex8_coordinates(const Mesh& mesh, const Hex8Element& h) {
   Hex8Coordinates x;
   for (int a = 0; a < 8; ++a) x.col(a) = mesh.node(h.nodes[static_cast<std::size_t>(a)]);
   return x;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 
 namespace flexstress::fe {
@@ -26,7 +27,8 @@ inline Material steel() {
 
 /// Checks that E > 0, -1 < nu < 0.5, rho >= 0 and all are finite. `where` names the material
 /// in the message (e.g. "material 2").
-inline Status validate(const Material& m, const std::string& where) {
+FLEXSTRESS_PRECOMPUTE
+Status validate(const Material& m, const std::string& where) {
   if (!std::isfinite(m.youngs_modulus) || !(m.youngs_modulus > 0.0))
     return make_error(ErrorCode::invalid_argument, where,
                       ": Young's modulus must be positive and finite, got ", m.youngs_modulus);
@@ -41,7 +43,8 @@ inline Status validate(const Material& m, const std::string& where) {
 
 /// 6x6 isotropic elasticity matrix D, sigma = D eps, in Voigt order
 /// (xx, yy, zz, xy, yz, zx) with engineering shear strains (gamma = 2 eps).
-inline Eigen::Matrix<double, 6, 6> elasticity_matrix(const Material& m) {
+FLEXSTRESS_PRECOMPUTE
+Eigen::Matrix<double, 6, 6> elasticity_matrix(const Material& m) {
   const double e = m.youngs_modulus, nu = m.poissons_ratio;
   const double lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
   const double mu = e / (2.0 * (1.0 + nu));

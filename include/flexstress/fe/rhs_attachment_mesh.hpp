@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/fe/hex8.hpp"
@@ -82,7 +83,8 @@ namespace detail {
 
 // Positions 0 < ... < length of `count` steps growing geometrically from `first` (ratio >= 1
 // found by bisection); uniform steps when `first` * count already covers the length.
-inline std::vector<double> geometric_positions(double length, double first, int count) {
+FLEXSTRESS_PRECOMPUTE
+std::vector<double> geometric_positions(double length, double first, int count) {
   std::vector<double> s{0.0};
   count = std::max(count, 1);
   if (first * count >= length) {
@@ -101,8 +103,8 @@ inline std::vector<double> geometric_positions(double length, double first, int 
 
 // Zone from a weld toe outwards: uniform steps h0 over at least fine_length, then
 // geometric growth in n_grow steps to the zone's end.
-inline std::vector<double> toe_zone_positions(double length, double h0, double fine_length,
-                                              int n_grow) {
+FLEXSTRESS_PRECOMPUTE
+std::vector<double> toe_zone_positions(double length, double h0, double fine_length, int n_grow) {
   const int n_fine = static_cast<int>(std::ceil(fine_length / h0 - 1e-9));
   if (n_fine * h0 >= length - 0.5 * h0)
     return geometric_positions(length, length, static_cast<int>(std::ceil(length / h0)));
@@ -140,8 +142,9 @@ class ProfilePoints {
 };
 
 // Adds the m x m bilinear subdivision of a convex quad (corners counter-clockwise or not).
-inline void add_subdivided_quad(ProfilePoints& pts, std::vector<std::array<Index, 4>>& quads,
-                                const std::array<Eigen::Vector2d, 4>& c, int m) {
+FLEXSTRESS_PRECOMPUTE
+void add_subdivided_quad(ProfilePoints& pts, std::vector<std::array<Index, 4>>& quads,
+                         const std::array<Eigen::Vector2d, 4>& c, int m) {
   auto at = [&](double s, double t) -> Eigen::Vector2d {
     return (1 - s) * (1 - t) * c[0] + s * (1 - t) * c[1] + s * t * c[2] + (1 - s) * t * c[3];
   };
@@ -155,8 +158,9 @@ inline void add_subdivided_quad(ProfilePoints& pts, std::vector<std::array<Index
 }
 
 // Twice the signed area of a quad in the plane of its two coordinates.
-inline double signed_area2(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                           const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+FLEXSTRESS_PRECOMPUTE
+double signed_area2(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                    const Eigen::Vector2d& d) {
   auto cross = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
     return p.x() * q.y() - p.y() * q.x();
   };
@@ -173,7 +177,8 @@ inline int scaled_count(double base, double density, int minimum) {
 /// attachment no wider than the flange (and, if narrower, at least 1.5 t clear of each web so
 /// that the flange's z-stations stay off the corners), the weld leg below the plate height, the
 /// weld toes at least 2 t inside the segment, 0 < density <= 4.
-inline Status validate(const RhsAttachmentSpec& s) {
+FLEXSTRESS_PRECOMPUTE
+Status validate(const RhsAttachmentSpec& s) {
   const std::pair<const char*, double> values[] = {{"height", s.height},
                                                    {"width", s.width},
                                                    {"wall", s.wall},
@@ -225,7 +230,8 @@ inline Status validate(const RhsAttachmentSpec& s) {
 /// Generates the RHS segment with the welded attachment. Fails with a message naming the bad
 /// parameter, or (should the parameters still produce one) the first brick with a
 /// non-positive Jacobian.
-inline Result<RhsAttachmentMesh> make_rhs_attachment_mesh(const RhsAttachmentSpec& spec = {}) {
+FLEXSTRESS_PRECOMPUTE
+Result<RhsAttachmentMesh> make_rhs_attachment_mesh(const RhsAttachmentSpec& spec = {}) {
   if (Status s = validate(spec); !s) return s.error();
   using detail::scaled_count;
   using V2 = Eigen::Vector2d;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/fe/dof_map.hpp"
 #include "flexstress/fe/mesh.hpp"
@@ -14,7 +15,8 @@
 namespace flexstress::fe {
 
 /// n_all x 6 matrix: columns translation x, y, z, rotation about x, y, z (about `center`).
-inline MatrixXd rigid_body_modes(const Mesh& mesh, const DofMap& dofs, const Vector3d& center) {
+FLEXSTRESS_PRECOMPUTE
+MatrixXd rigid_body_modes(const Mesh& mesh, const DofMap& dofs, const Vector3d& center) {
   MatrixXd r = MatrixXd::Zero(dofs.size(), 6);
   for (Index n = 0; n < mesh.num_nodes(); ++n) {
     const int nd = dofs.num_node_dofs(n);
@@ -31,7 +33,8 @@ inline MatrixXd rigid_body_modes(const Mesh& mesh, const DofMap& dofs, const Vec
 }
 
 /// Centroid of the nodes that carry DOFs.
-inline Vector3d dof_node_centroid(const Mesh& mesh, const DofMap& dofs) {
+FLEXSTRESS_PRECOMPUTE
+Vector3d dof_node_centroid(const Mesh& mesh, const DofMap& dofs) {
   Vector3d c = Vector3d::Zero();
   Index count = 0;
   for (Index n = 0; n < mesh.num_nodes(); ++n)
@@ -43,7 +46,8 @@ inline Vector3d dof_node_centroid(const Mesh& mesh, const DofMap& dofs) {
 }
 
 /// "translation along x", "rotation about z", ... for rigid mode column j.
-inline std::string rigid_mode_name(int j) {
+FLEXSTRESS_PRECOMPUTE
+std::string rigid_mode_name(int j) {
   static const char* names[6] = {"translation along x", "translation along y",
                                  "translation along z", "rotation about x",
                                  "rotation about y",    "rotation about z"};
@@ -52,7 +56,8 @@ inline std::string rigid_mode_name(int j) {
 
 /// Names the dominant components of a combination v (6) of the rigid modes above, e.g.
 /// "rotation about z" or "translation along y + rotation about z".
-inline std::string describe_rigid_motion(const Eigen::Ref<const VectorXd>& v) {
+FLEXSTRESS_PRECOMPUTE
+std::string describe_rigid_motion(const Eigen::Ref<const VectorXd>& v) {
   const double vmax = v.cwiseAbs().maxCoeff();
   std::string combo;
   for (int j = 0; j < 6; ++j)

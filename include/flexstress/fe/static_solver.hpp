@@ -13,6 +13,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/fe/assembly.hpp"
 #include "flexstress/fe/rigid_body_modes.hpp"
@@ -22,8 +23,9 @@ namespace flexstress::fe {
 namespace detail {
 
 /// Explains why the constrained stiffness of `model` is singular.
-inline Error explain_singular_stiffness(const Mesh& mesh, const AssembledModel& model,
-                                        Index bad_free_dof) {
+FLEXSTRESS_PRECOMPUTE
+Error explain_singular_stiffness(const Mesh& mesh, const AssembledModel& model,
+                                 Index bad_free_dof) {
   // Rigid motions restricted to the free DOFs: those with (near) zero strain energy are free.
   // Rotations about the centroid of the supported nodes read naturally ("rotation about z"
   // for a beam pinned at one end); without supports, about the centroid of the mesh.
@@ -76,6 +78,7 @@ class StaticSolver {
   /// Factorizes the constrained stiffness of `model` (built from `mesh`). Fails with an
   /// explanation if it is singular or indefinite. The solver keeps a reference to `model`,
   /// which must outlive it.
+  FLEXSTRESS_PRECOMPUTE
   static Result<StaticSolver> factorize(const Mesh& mesh, const AssembledModel& model) {
     StaticSolver s;
     s.model_ = &model;
@@ -104,9 +107,11 @@ class StaticSolver {
   }
 
   /// Free-DOF displacements for a free-DOF load.
+  FLEXSTRESS_PRECOMPUTE
   VectorXd solve_free(const VectorXd& f_free) const { return ldlt_->solve(f_free); }
 
   /// All-DOF displacements for an all-DOF load and prescribed values.
+  FLEXSTRESS_PRECOMPUTE
   VectorXd solve(const VectorXd& f_all, const VectorXd& prescribed_values) const {
     const auto& ct = model_->constraints;
     const VectorXd rhs =
@@ -114,6 +119,7 @@ class StaticSolver {
     return ct.expand(ldlt_->solve(rhs), prescribed_values);
   }
   /// All-DOF displacements with the prescribed values of the boundary conditions.
+  FLEXSTRESS_PRECOMPUTE
   VectorXd solve(const VectorXd& f_all) const {
     return solve(f_all, model_->constraints.prescribed_values());
   }

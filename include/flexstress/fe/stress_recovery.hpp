@@ -26,6 +26,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/fe/brick_locator.hpp"
@@ -48,7 +49,8 @@ namespace hex8 {
 /// Extrapolation matrix E (8 x 8): nodal value at node a = sum_g E(a, g) * value at Gauss
 /// point g; E(a, g) = N_g(sqrt(3) xi_a), the trilinear shape function of the Gauss-point box
 /// evaluated at the node. Rows sum to one (a constant field stays constant).
-inline Eigen::Matrix<double, 8, 8> gauss_to_node_extrapolation() {
+FLEXSTRESS_PRECOMPUTE
+Eigen::Matrix<double, 8, 8> gauss_to_node_extrapolation() {
   Eigen::Matrix<double, 8, 8> e;
   const double r = std::sqrt(3.0);
   for (int a = 0; a < 8; ++a)
@@ -61,10 +63,11 @@ inline Eigen::Matrix<double, 8, 8> gauss_to_node_extrapolation() {
 /// Stress operators at the 8 Gauss points of a brick, sharing one Jacobian check and one
 /// condensation of the incompatible modes (the same operators hex8_stress_operator gives at
 /// hex8::gauss_point(g), at an eighth of the cost). Fails for a degenerate brick.
-inline Result<Hex8StressOperators> hex8_gauss_stress_operators(const Hex8Coordinates& x,
-                                                               const Material& mat,
-                                                               Hex8Formulation formulation,
-                                                               Index element_id) {
+FLEXSTRESS_PRECOMPUTE
+Result<Hex8StressOperators> hex8_gauss_stress_operators(const Hex8Coordinates& x,
+                                                        const Material& mat,
+                                                        Hex8Formulation formulation,
+                                                        Index element_id) {
   auto kin = hex8_kinematics(x, element_id);
   if (!kin) return kin.error();
   const Matrix6d d = elasticity_matrix(mat);
@@ -89,10 +92,11 @@ inline Result<Hex8StressOperators> hex8_gauss_stress_operators(const Hex8Coordin
 
 /// Stress operators at the 8 nodes of a brick, extrapolated from the Gauss points
 /// (not averaged with neighbours): S_a = sum_g E(a, g) S_g.
-inline Result<Hex8StressOperators> hex8_nodal_stress_operators(const Hex8Coordinates& x,
-                                                               const Material& mat,
-                                                               Hex8Formulation formulation,
-                                                               Index element_id) {
+FLEXSTRESS_PRECOMPUTE
+Result<Hex8StressOperators> hex8_nodal_stress_operators(const Hex8Coordinates& x,
+                                                        const Material& mat,
+                                                        Hex8Formulation formulation,
+                                                        Index element_id) {
   auto gauss = hex8_gauss_stress_operators(x, mat, formulation, element_id);
   if (!gauss) return gauss.error();
   const Eigen::Matrix<double, 8, 8> e = hex8::gauss_to_node_extrapolation();
@@ -107,8 +111,8 @@ inline Result<Hex8StressOperators> hex8_nodal_stress_operators(const Hex8Coordin
 
 namespace detail {
 
-inline Status check_recovery_input(const Mesh& mesh, const DofMap& dofs, Index u_size,
-                                   const char* what) {
+FLEXSTRESS_PRECOMPUTE
+Status check_recovery_input(const Mesh& mesh, const DofMap& dofs, Index u_size, const char* what) {
   if (dofs.num_nodes() != mesh.num_nodes())
     return make_error(ErrorCode::size_mismatch, what, ": the DOF map numbers ", dofs.num_nodes(),
                       " nodes but the mesh has ", mesh.num_nodes(), " (a DofMap of another mesh?)");
@@ -119,7 +123,8 @@ inline Status check_recovery_input(const Mesh& mesh, const DofMap& dofs, Index u
 }
 
 // Global DOFs of a brick, in element DOF order.
-inline std::array<Index, 24> brick_dofs(const DofMap& dofs, const Hex8Element& h) {
+FLEXSTRESS_PRECOMPUTE
+std::array<Index, 24> brick_dofs(const DofMap& dofs, const Hex8Element& h) {
   std::array<Index, 24> d{};
   for (std::size_t a = 0; a < 8; ++a)
     for (int c = 0; c < 3; ++c) d[3 * a + static_cast<std::size_t>(c)] = dofs.dof(h.nodes[a], c);
@@ -127,9 +132,9 @@ inline std::array<Index, 24> brick_dofs(const DofMap& dofs, const Hex8Element& h
 }
 
 // Adds a 6 x 24 block at rows row0.. and the brick's DOF columns, scaled.
-inline void add_block(std::vector<Eigen::Triplet<double>>& trip, Index row0,
-                      const Hex8StressOperator& s, const std::array<Index, 24>& cols,
-                      double scale) {
+FLEXSTRESS_PRECOMPUTE
+void add_block(std::vector<Eigen::Triplet<double>>& trip, Index row0, const Hex8StressOperator& s,
+               const std::array<Index, 24>& cols, double scale) {
   for (Index i = 0; i < 6; ++i)
     for (std::size_t j = 0; j < 24; ++j) {
       const double v = scale * s(i, static_cast<Index>(j));
@@ -141,8 +146,8 @@ inline void add_block(std::vector<Eigen::Triplet<double>>& trip, Index row0,
 
 /// A brick's element displacement vector [u v w] per node, gathered from the all-DOF vector.
 /// Precondition: u has dofs.size() entries and dofs was built from the brick's mesh.
-inline Vector24d hex8_element_displacements(const DofMap& dofs, const Hex8Element& h,
-                                            const VectorXd& u) {
+FLEXSTRESS_PRECOMPUTE
+Vector24d hex8_element_displacements(const DofMap& dofs, const Hex8Element& h, const VectorXd& u) {
   Vector24d ue;
   const auto d = detail::brick_dofs(dofs, h);
   for (std::size_t j = 0; j < 24; ++j) ue(static_cast<Index>(j)) = u(d[j]);
@@ -151,9 +156,9 @@ inline Vector24d hex8_element_displacements(const DofMap& dofs, const Hex8Elemen
 
 /// Stresses at the 8 Gauss points of every brick (in mesh order) for the all-DOF
 /// displacements u. Fails on size mismatches and degenerate bricks (naming the element).
-inline Result<std::vector<Hex8GaussStresses>> gauss_point_stresses(const Mesh& mesh,
-                                                                   const DofMap& dofs,
-                                                                   const VectorXd& u) {
+FLEXSTRESS_PRECOMPUTE
+Result<std::vector<Hex8GaussStresses>> gauss_point_stresses(const Mesh& mesh, const DofMap& dofs,
+                                                            const VectorXd& u) {
   if (Status s = detail::check_recovery_input(mesh, dofs, u.size(), "gauss_point_stresses"); !s)
     return s.error();
   std::vector<Hex8GaussStresses> out(mesh.hexes().size());
@@ -180,8 +185,8 @@ struct NodalStresses {
 };
 
 /// Averaged nodal stresses of all nodes for the all-DOF displacements u.
-inline Result<NodalStresses> nodal_stresses(const Mesh& mesh, const DofMap& dofs,
-                                            const VectorXd& u) {
+FLEXSTRESS_PRECOMPUTE
+Result<NodalStresses> nodal_stresses(const Mesh& mesh, const DofMap& dofs, const VectorXd& u) {
   if (Status s = detail::check_recovery_input(mesh, dofs, u.size(), "nodal_stresses"); !s)
     return s.error();
   NodalStresses out;
@@ -207,8 +212,9 @@ inline Result<NodalStresses> nodal_stresses(const Mesh& mesh, const DofMap& dofs
 /// (6 * nodes.size()) x dofs.size() matrix S, rows 6 i .. 6 i + 5 for nodes[i], with
 /// sigma(nodes[i]) = S.middleRows(6 i, 6) u, equal to nodal_stresses(...).at(nodes[i]).
 /// Fails, naming the node, for a node that does not exist or belongs to no brick.
-inline Result<SparseMatrixd> nodal_stress_operator(const Mesh& mesh, const DofMap& dofs,
-                                                   const std::vector<Index>& nodes) {
+FLEXSTRESS_PRECOMPUTE
+Result<SparseMatrixd> nodal_stress_operator(const Mesh& mesh, const DofMap& dofs,
+                                            const std::vector<Index>& nodes) {
   if (Status s = detail::check_recovery_input(mesh, dofs, -1, "nodal_stress_operator"); !s)
     return s.error();
   const auto nn = static_cast<std::size_t>(mesh.num_nodes());
@@ -251,8 +257,9 @@ inline Result<SparseMatrixd> nodal_stress_operator(const Mesh& mesh, const DofMa
 /// Linear operator of the stresses at located brick points (not averaged: the stress of the
 /// element that contains each point): (6 * points.size()) x dofs.size(), rows 6 i .. 6 i + 5
 /// for points[i]. Fails for an element id that does not exist or a degenerate brick.
-inline Result<SparseMatrixd> point_stress_operator(const Mesh& mesh, const DofMap& dofs,
-                                                   const std::vector<BrickPoint>& points) {
+FLEXSTRESS_PRECOMPUTE
+Result<SparseMatrixd> point_stress_operator(const Mesh& mesh, const DofMap& dofs,
+                                            const std::vector<BrickPoint>& points) {
   if (Status s = detail::check_recovery_input(mesh, dofs, -1, "point_stress_operator"); !s)
     return s.error();
   std::vector<Eigen::Triplet<double>> trip;
@@ -275,9 +282,10 @@ inline Result<SparseMatrixd> point_stress_operator(const Mesh& mesh, const DofMa
 
 /// As above for physical points, located with `locator` (built from the same mesh). Fails,
 /// naming the point, for a point outside the brick mesh.
-inline Result<SparseMatrixd> point_stress_operator(const Mesh& mesh, const DofMap& dofs,
-                                                   const BrickLocator& locator,
-                                                   const std::vector<Vector3d>& points) {
+FLEXSTRESS_PRECOMPUTE
+Result<SparseMatrixd> point_stress_operator(const Mesh& mesh, const DofMap& dofs,
+                                            const BrickLocator& locator,
+                                            const std::vector<Vector3d>& points) {
   std::vector<BrickPoint> located;
   located.reserve(points.size());
   for (const Vector3d& p : points) {
@@ -290,9 +298,9 @@ inline Result<SparseMatrixd> point_stress_operator(const Mesh& mesh, const DofMa
 
 /// Stress at a physical point for the all-DOF displacements u (the stress of the brick that
 /// contains the point; see BrickLocator::locate for points on shared faces).
-inline Result<Vector6d> stress_at_point(const Mesh& mesh, const DofMap& dofs,
-                                        const BrickLocator& locator, const VectorXd& u,
-                                        const Vector3d& p) {
+FLEXSTRESS_PRECOMPUTE
+Result<Vector6d> stress_at_point(const Mesh& mesh, const DofMap& dofs, const BrickLocator& locator,
+                                 const VectorXd& u, const Vector3d& p) {
   if (Status s = detail::check_recovery_input(mesh, dofs, u.size(), "stress_at_point"); !s)
     return s.error();
   auto bp = locator.locate(p);

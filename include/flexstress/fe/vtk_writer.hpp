@@ -24,6 +24,7 @@
 
 #include <Eigen/Core>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/fe/dof_map.hpp"
@@ -54,7 +55,8 @@ struct VtkOptions {
 enum class VtkCellType : unsigned char { vertex = 1, line = 3, hexahedron = 12 };
 
 /// Number of cells write_vtu writes for `mesh` with `options` (the size of cell fields).
-inline Index vtk_num_cells(const Mesh& mesh, const VtkOptions& options = {}) {
+FLEXSTRESS_PRECOMPUTE
+Index vtk_num_cells(const Mesh& mesh, const VtkOptions& options = {}) {
   Index n = static_cast<Index>(mesh.hexes().size() + mesh.beams().size());
   if (options.point_masses) n += static_cast<Index>(mesh.point_masses().size());
   if (options.rigid_links)
@@ -64,8 +66,9 @@ inline Index vtk_num_cells(const Mesh& mesh, const VtkOptions& options = {}) {
 
 /// Nodal translations (3 x num_nodes) from the all-DOF displacements u; nodes without DOFs
 /// get zero.
-inline Result<VtkField> displacement_field(const Mesh& mesh, const DofMap& dofs, const VectorXd& u,
-                                           const std::string& name = "displacement") {
+FLEXSTRESS_PRECOMPUTE
+Result<VtkField> displacement_field(const Mesh& mesh, const DofMap& dofs, const VectorXd& u,
+                                    const std::string& name = "displacement") {
   if (dofs.num_nodes() != mesh.num_nodes() || u.size() != dofs.size())
     return make_error(ErrorCode::size_mismatch, "displacement_field: ", u.size(),
                       " displacements and a DOF map of ", dofs.size(), " DOFs over ",
@@ -78,7 +81,8 @@ inline Result<VtkField> displacement_field(const Mesh& mesh, const DofMap& dofs,
 
 /// Displacement, averaged nodal brick stress (6 components, Voigt) and its von Mises value:
 /// the point fields one usually wants. Nodes on no brick get zero stress.
-inline Result<VtkData> standard_fields(const Mesh& mesh, const DofMap& dofs, const VectorXd& u) {
+FLEXSTRESS_PRECOMPUTE
+Result<VtkData> standard_fields(const Mesh& mesh, const DofMap& dofs, const VectorXd& u) {
   auto disp = displacement_field(mesh, dofs, u);
   if (!disp) return disp.error();
   VtkData data;
@@ -96,7 +100,8 @@ inline Result<VtkData> standard_fields(const Mesh& mesh, const DofMap& dofs, con
 
 namespace detail {
 
-inline Status check_vtk_field(const VtkField& f, Index count, const char* kind) {
+FLEXSTRESS_PRECOMPUTE
+Status check_vtk_field(const VtkField& f, Index count, const char* kind) {
   if (f.name.empty() || f.name.find_first_of("<>&\"'") != std::string::npos)
     return make_error(ErrorCode::invalid_argument, "VTK ", kind, " field '", f.name,
                       "': a name must be non-empty and free of < > & \" '");
@@ -112,7 +117,8 @@ inline Status check_vtk_field(const VtkField& f, Index count, const char* kind) 
   return Status::success();
 }
 
-inline void write_vtk_array(std::FILE* out, const VtkField& f) {
+FLEXSTRESS_PRECOMPUTE
+void write_vtk_array(std::FILE* out, const VtkField& f) {
   std::fprintf(out,
                "        <DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"%d\" "
                "format=\"ascii\">\n",
@@ -130,8 +136,9 @@ inline void write_vtk_array(std::FILE* out, const VtkField& f) {
 /// Writes `mesh` and `data` to `path` as an ASCII .vtu file. Fails, naming the field or the
 /// path, for fields of the wrong size, bad names or non-finite values (nothing is written),
 /// and when the file cannot be opened or written (io_error).
-inline Status write_vtu(const std::string& path, const Mesh& mesh, const VtkData& data = {},
-                        const VtkOptions& options = {}) {
+FLEXSTRESS_PRECOMPUTE
+Status write_vtu(const std::string& path, const Mesh& mesh, const VtkData& data = {},
+                 const VtkOptions& options = {}) {
   if (Status s = mesh.validate(); !s) return s;
   const Index np = mesh.num_nodes(), nc = vtk_num_cells(mesh, options);
   for (const auto& f : data.point_data)

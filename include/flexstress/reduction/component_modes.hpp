@@ -27,6 +27,7 @@
 #include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/fe/assembly.hpp"
 #include "flexstress/fe/eigen_solver.hpp"
@@ -62,8 +63,9 @@ struct ComponentModes {
 namespace detail {
 
 /// All-DOF indices of the interface DOFs, validated.
-inline Result<std::vector<Index>> interface_dof_list(const fe::Mesh& mesh, const fe::DofMap& dofs,
-                                                     const std::vector<InterfaceNode>& nodes) {
+FLEXSTRESS_PRECOMPUTE
+Result<std::vector<Index>> interface_dof_list(const fe::Mesh& mesh, const fe::DofMap& dofs,
+                                              const std::vector<InterfaceNode>& nodes) {
   std::vector<Index> list;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const InterfaceNode& in = nodes[i];
@@ -92,8 +94,9 @@ inline Result<std::vector<Index>> interface_dof_list(const fe::Mesh& mesh, const
 
 /// Fails unless the interface DOFs can hold all six rigid motions of the body (otherwise the
 /// body would be a mechanism on its interface), naming the motions it cannot hold.
-inline Status check_interface_holds_rigid_motion(const fe::Mesh& mesh, const fe::DofMap& dofs,
-                                                 const std::vector<Index>& interface_dofs) {
+FLEXSTRESS_PRECOMPUTE
+Status check_interface_holds_rigid_motion(const fe::Mesh& mesh, const fe::DofMap& dofs,
+                                          const std::vector<Index>& interface_dofs) {
   Vector3d center = Vector3d::Zero();
   for (Index d : interface_dofs) center += mesh.node(dofs.node_of(d));
   if (!interface_dofs.empty()) center /= static_cast<double>(interface_dofs.size());
@@ -117,7 +120,8 @@ inline Status check_interface_holds_rigid_motion(const fe::Mesh& mesh, const fe:
   return Status::success();
 }
 
-inline int modes_to_keep(const ModeSelection& sel, Index available) {
+FLEXSTRESS_PRECOMPUTE
+int modes_to_keep(const ModeSelection& sel, Index available) {
   if (sel.count >= 0) return sel.count;
   if (sel.cutoff_frequency_hz > 0)
     return static_cast<int>(std::min<Index>(sel.max_count_for_cutoff, available));
@@ -125,7 +129,8 @@ inline int modes_to_keep(const ModeSelection& sel, Index available) {
 }
 
 /// Drops the modes above the cut-off (when selecting by frequency).
-inline void apply_cutoff(const ModeSelection& sel, fe::EigenSolution& s) {
+FLEXSTRESS_PRECOMPUTE
+void apply_cutoff(const ModeSelection& sel, fe::EigenSolution& s) {
   if (sel.count >= 0 || !(sel.cutoff_frequency_hz > 0)) return;
   const double w = 2.0 * 3.14159265358979323846 * sel.cutoff_frequency_hz;
   Index keep = 0;
@@ -140,11 +145,11 @@ inline void apply_cutoff(const ModeSelection& sel, fe::EigenSolution& s) {
 /// Errors: interface nodes that do not exist or lack DOFs, an empty interface, more
 /// fixed-interface modes than interior DOFs, a singular interior block (a part of the body that
 /// the interface does not hold, naming the DOF).
-inline Result<ComponentModes> craig_bampton(const fe::Mesh& mesh,
-                                            const std::vector<InterfaceNode>& interface,
-                                            const ModeSelection& modes,
-                                            const fe::MassOptions& mass = {},
-                                            const fe::EigenOptions& eigen = {}) {
+FLEXSTRESS_PRECOMPUTE
+Result<ComponentModes> craig_bampton(const fe::Mesh& mesh,
+                                     const std::vector<InterfaceNode>& interface,
+                                     const ModeSelection& modes, const fe::MassOptions& mass = {},
+                                     const fe::EigenOptions& eigen = {}) {
   auto dofs = fe::DofMap::build(mesh);
   if (!dofs) return dofs.error();
   auto list = detail::interface_dof_list(mesh, *dofs, interface);
@@ -206,8 +211,9 @@ inline Result<ComponentModes> craig_bampton(const fe::Mesh& mesh,
 
 /// Six DOFs (free, not rigid-link slaves) that support the body statically determinately:
 /// chosen by column-pivoted QR of the rigid modes restricted to the free DOFs.
-inline Result<fe::BoundaryConditions> statically_determinate_support(const fe::AssembledModel& m,
-                                                                     const MatrixXd& rigid_all) {
+FLEXSTRESS_PRECOMPUTE
+Result<fe::BoundaryConditions> statically_determinate_support(const fe::AssembledModel& m,
+                                                              const MatrixXd& rigid_all) {
   const auto& free = m.constraints.free_dofs();
   MatrixXd rt(6, static_cast<Index>(free.size()));
   for (std::size_t i = 0; i < free.size(); ++i)
@@ -226,11 +232,11 @@ inline Result<fe::BoundaryConditions> statically_determinate_support(const fe::A
 
 /// Craig-Chang basis (free-free modes + inertia-relief attachment modes) of the free-floating
 /// body. An empty interface is allowed: then the basis is the free-free modes alone.
-inline Result<ComponentModes> craig_chang(const fe::Mesh& mesh,
-                                          const std::vector<InterfaceNode>& interface,
-                                          const ModeSelection& modes,
-                                          const fe::MassOptions& mass = {},
-                                          const fe::EigenOptions& eigen = {}) {
+FLEXSTRESS_PRECOMPUTE
+Result<ComponentModes> craig_chang(const fe::Mesh& mesh,
+                                   const std::vector<InterfaceNode>& interface,
+                                   const ModeSelection& modes, const fe::MassOptions& mass = {},
+                                   const fe::EigenOptions& eigen = {}) {
   auto assembled = fe::assemble(mesh, {}, mass);
   if (!assembled) return assembled.error();
   ComponentModes cm;

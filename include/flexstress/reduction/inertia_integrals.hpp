@@ -24,6 +24,7 @@
 
 #include <Eigen/Core>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/skew.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/fe/beam3d.hpp"
@@ -59,8 +60,9 @@ inline Matrix3d second_moment_of_inertia(const Matrix3d& j) {
 
 /// Adds a lumped mass m with equivalent tensor i_eq at a node whose field values are
 /// c[a] (translation) and r[a] (rotation, zero when the node has none).
-inline void add_lumped(InertiaIntegrals& out, double m, const Matrix3d& i_eq,
-                       const std::vector<Vector3d>& c, const std::vector<Vector3d>& r) {
+FLEXSTRESS_PRECOMPUTE
+void add_lumped(InertiaIntegrals& out, double m, const Matrix3d& i_eq,
+                const std::vector<Vector3d>& c, const std::vector<Vector3d>& r) {
   const Index nf = out.num_modes + 1;
   out.mass += m;
   for (Index a = 0; a < nf; ++a)
@@ -85,9 +87,9 @@ inline void add_lumped(InertiaIntegrals& out, double m, const Matrix3d& i_eq,
 
 /// Integrates the first and second moments of u0 and of the columns of `modes` (all-DOF
 /// vectors of `dofs`) over the mesh, with the same mass model as fe::assemble_mass(options).
-inline Result<InertiaIntegrals> inertia_integrals(const fe::Mesh& mesh, const fe::DofMap& dofs,
-                                                  const MatrixXd& modes,
-                                                  const fe::MassOptions& options) {
+FLEXSTRESS_PRECOMPUTE
+Result<InertiaIntegrals> inertia_integrals(const fe::Mesh& mesh, const fe::DofMap& dofs,
+                                           const MatrixXd& modes, const fe::MassOptions& options) {
   if (modes.rows() != dofs.size())
     return make_error(ErrorCode::size_mismatch, "inertia integrals: mode vectors have ",
                       modes.rows(), " rows but the mesh has ", dofs.size(), " DOFs");

@@ -11,6 +11,7 @@
 #include <array>
 #include <vector>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/fe/mesh.hpp"
@@ -29,7 +30,8 @@ struct InterfaceNode {
 
 /// Adds a node at the centroid of `face_nodes` (or at `position` if given) and ties the face to
 /// it rigidly (RBE2). Returns the new node; its six DOFs can serve as an interface.
-inline Index add_rigid_spider(fe::Mesh& mesh, const std::vector<Index>& face_nodes) {
+FLEXSTRESS_PRECOMPUTE
+Index add_rigid_spider(fe::Mesh& mesh, const std::vector<Index>& face_nodes) {
   Vector3d c = Vector3d::Zero();
   for (Index n : face_nodes) c += mesh.node(n);
   if (!face_nodes.empty()) c /= static_cast<double>(face_nodes.size());
@@ -38,8 +40,9 @@ inline Index add_rigid_spider(fe::Mesh& mesh, const std::vector<Index>& face_nod
   return master;
 }
 
-inline Index add_rigid_spider(fe::Mesh& mesh, const std::vector<Index>& face_nodes,
-                              const Vector3d& position) {
+FLEXSTRESS_PRECOMPUTE
+Index add_rigid_spider(fe::Mesh& mesh, const std::vector<Index>& face_nodes,
+                       const Vector3d& position) {
   const Index master = mesh.add_node(position);
   mesh.add_rigid_link(master, face_nodes);
   return master;

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/fe/mass_options.hpp"
 #include "flexstress/reduction/component_modes.hpp"
@@ -91,8 +92,9 @@ struct ReductionSpec {
 };
 
 /// From a component-mode basis to modal body data.
-inline Result<ModalBodyData> make_modal_body(const fe::Mesh& mesh, const ComponentModes& cm,
-                                             const ReductionSpec& spec) {
+FLEXSTRESS_PRECOMPUTE
+Result<ModalBodyData> make_modal_body(const fe::Mesh& mesh, const ComponentModes& cm,
+                                      const ReductionSpec& spec) {
   auto deformation = orthonormalize(mesh, cm);
   if (!deformation) return deformation.error();
   const Index available = deformation->eigenvalues.size();
@@ -130,7 +132,8 @@ inline Result<ModalBodyData> make_modal_body(const fe::Mesh& mesh, const Compone
 
 /// The whole precompute: component modes (Craig-Bampton or Craig-Chang), orthonormalization,
 /// inertia integrals, mode shapes at every node.
-inline Result<ModalBodyData> reduce(const fe::Mesh& mesh, const ReductionSpec& spec) {
+FLEXSTRESS_PRECOMPUTE
+Result<ModalBodyData> reduce(const fe::Mesh& mesh, const ReductionSpec& spec) {
   if (!(spec.damping_ratio >= 0.0) || !(spec.damping_ratio < 1.0))
     return make_error(ErrorCode::invalid_argument, "modal damping ratio must lie in [0, 1), got ",
                       spec.damping_ratio);

@@ -16,6 +16,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/fe/rigid_body_modes.hpp"
 #include "flexstress/reduction/component_modes.hpp"
@@ -33,7 +34,8 @@ struct DeformationModes {
 /// Orthonormalizes `cm` and drops its rigid-body motions. Fails if the basis cannot represent
 /// all six rigid motions (an interface that cannot carry them), or if it contains a mechanism
 /// (a deformation mode with zero frequency).
-inline Result<DeformationModes> orthonormalize(const fe::Mesh& mesh, const ComponentModes& cm) {
+FLEXSTRESS_PRECOMPUTE
+Result<DeformationModes> orthonormalize(const fe::Mesh& mesh, const ComponentModes& cm) {
   const MatrixXd& s = cm.basis;
   const Index r = s.cols();
   if (r <= 6)

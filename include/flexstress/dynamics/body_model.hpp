@@ -22,6 +22,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 
 #include "flexstress/core/skew.hpp"
 #include "flexstress/core/status.hpp"
@@ -80,8 +81,6 @@ class BodyModel {
     for (int k = 0; k < NModes; ++k) {
       b.s_phi_.col(k) = in.first[static_cast<std::size_t>(k + 1)].cast<Scalar>();
       b.lambda0_.template block<3, 3>(0, 3 * k) = in.lambda(0, k + 1).cast<Scalar>();
-      b.stiffness_(k) = static_cast<Scalar>(d.eigenvalues(k));
-      b.damping_(k) = static_cast<Scalar>(2.0 * d.damping_ratios(k) * std::sqrt(d.eigenvalues(k)));
       for (int l = 0; l < NModes; ++l) {
         const Matrix3d& llk = in.lambda(l + 1, k + 1);
         // Column l of the (9N x N) map p -> vec(W_1..W_N) holds vec(Lambda_lk) at block k.
@@ -94,6 +93,13 @@ class BodyModel {
           b.gyro_[static_cast<std::size_t>(a)](k, l) = static_cast<Scalar>(g(a));
       }
     }
+    if (d.modal_stiffness.rows() < NModes || d.modal_stiffness.cols() < NModes)
+      return make_error(ErrorCode::size_mismatch, "FFRF body: modal stiffness matrix is ",
+                        d.modal_stiffness.rows(), "x", d.modal_stiffness.cols(), ", need ", NModes);
+    b.stiffness_ = d.modal_stiffness.topLeftCorner(NModes, NModes).cast<Scalar>();
+    b.stiffness_ = (Scalar(0.5) * (b.stiffness_ + b.stiffness_.transpose())).eval();
+    b.zeta_ = d.damping_ratios.head(NModes).cast<Scalar>();
+    b.update_damping();
     b.node_positions_.resize(static_cast<std::size_t>(d.num_nodes()));
     for (Index n = 0; n < d.num_nodes(); ++n)
       b.node_positions_[static_cast<std::size_t>(n)] =
@@ -107,20 +113,19 @@ class BodyModel {
   // ---- constant data --------------------------------------------------------------------
   Scalar mass() const { return mass_; }
   const Vec3<Scalar>& first_moment() const { return s0_; }
-  const VecN& modal_stiffness() const { return stiffness_; }  ///< omega^2
-  const VecN& modal_damping() const { return damping_; }      ///< 2 zeta omega
-  /// Modal damping ratios can be changed after setup (a scene knob, no reallocation).
+  /// Modal stiffness K (N x N; diag(omega^2) for orthonormal modes).
+  const MatN& modal_stiffness() const { return stiffness_; }
+  /// Modal damping D (N x N): D = M_ff^(1/2) 2 zeta Omega M_ff^(1/2) in the eigenbasis of
+  /// (K, M_ff), which is diag(2 zeta omega) for orthonormal modes.
+  const MatN& modal_damping() const { return damping_; }
+  /// Sets the same modal damping ratio for every mode (a scene knob, no reallocation).
   void set_damping_ratio(Scalar zeta) {
-    for (int k = 0; k < NModes; ++k) damping_(k) = Scalar(2) * zeta * std::sqrt(stiffness_(k));
+    zeta_.setConstant(zeta);
+    update_damping();
   }
-  /// Highest modal angular frequency (0 for a rigid body).
-  Scalar max_frequency() const {
-    if constexpr (NModes == 0) {
-      return Scalar(0);
-    } else {
-      return std::sqrt(stiffness_.maxCoeff());
-    }
-  }
+  /// Highest angular frequency of the modes, sqrt of the largest eigenvalue of (K, M_ff) (0 for a
+  /// rigid body).
+  Scalar max_frequency() const { return max_frequency_; }
   Index num_nodes() const { return static_cast<Index>(node_positions_.size()); }
   const Vec3<Scalar>& node_position(Index n) const {
     return node_positions_[static_cast<std::size_t>(n)];
@@ -250,7 +255,7 @@ class BodyModel {
     if constexpr (NModes == 0) {
       return Scalar(0);
     } else {
-      return Scalar(0.5) * k.p.dot(stiffness_.cwiseProduct(k.p));
+      return Scalar(0.5) * k.p.dot(stiffness_ * k.p);
     }
   }
   /// Potential of uniform gravity g: -g . (m R + A S(p)).
@@ -278,6 +283,21 @@ class BodyModel {
   }
 
  private:
+  /// D from the damping ratios in the modal basis of (K, M_ff): with K Z = M_ff Z W^2 and
+  /// Z^T M_ff Z = 1, D = M_ff Z (2 zeta W) Z^T M_ff. Also records the highest frequency.
+  void update_damping() {
+    if constexpr (NModes > 0) {
+      // Setup only: solved in dynamic double precision (one Eigen instantiation for every N).
+      const MatrixXd k = stiffness_.template cast<double>(), m = mass_ff_.template cast<double>();
+      Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> es(k, m);
+      const VectorXd w = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+      max_frequency_ = static_cast<Scalar>(w.maxCoeff());
+      const MatrixXd mz = m * es.eigenvectors();
+      const VectorXd c = 2.0 * zeta_.template cast<double>().cwiseProduct(w);
+      damping_ = (mz * c.asDiagonal() * mz.transpose()).template cast<Scalar>();
+    }
+  }
+
   Scalar mass_ = Scalar(0);
   Vec3<Scalar> s0_ = Vec3<Scalar>::Zero();
   Mat3<Scalar> lambda00_ = Mat3<Scalar>::Zero();
@@ -286,8 +306,10 @@ class BodyModel {
   Mat<Scalar, 9 * NModes, NModes> w_map_ = Mat<Scalar, 9 * NModes, NModes>::Zero();
   MatN mass_ff_ = MatN::Zero();
   std::array<MatN, 3> gyro_{MatN::Zero(), MatN::Zero(), MatN::Zero()};
-  VecN stiffness_ = VecN::Zero();
-  VecN damping_ = VecN::Zero();
+  MatN stiffness_ = MatN::Zero();
+  MatN damping_ = MatN::Zero();
+  VecN zeta_ = VecN::Zero();
+  Scalar max_frequency_ = Scalar(0);
   std::vector<Vec3<Scalar>> node_positions_;
   std::vector<unsigned char> node_has_rotation_;
   Eigen::Matrix<Scalar, Eigen::Dynamic, NModes> phi_r_;

@@ -112,6 +112,8 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   using BodyType = std::tuple_element_t<static_cast<std::size_t>(K), BodyTuple>;
   template <int K>
   static constexpr int modes_of = detail::modes_of<K, BodyTuple>::value;
+  template <int K>
+  static constexpr bool has_modes = detail::modes_of<K, BodyTuple>::value > 0;
 
   using VecV = Eigen::Matrix<Scalar, NV, 1>;
   using VecC = Eigen::Matrix<Scalar, NC, 1>;
@@ -222,7 +224,7 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
           const auto v = s.v.template segment<body_nv[K]>(body_offset[K]);
           kin.velocity = v.template head<3>();
           kin.omega = v.template segment<3>(3);
-          if constexpr (modes_of < K >> 0) {
+          if constexpr (has_modes<K>) {
             kin.p = q.p;
             kin.p_dot = v.template tail<modes_of<K>>();
           }
@@ -259,11 +261,11 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
             body.quadratic_velocity(kin, terms, qv);
             fb -= qv;
           }
-          if constexpr (modes_of < K >> 0) {
+          if constexpr (has_modes<K>) {
             auto fp = fb.template tail<modes_of<K>>();
-            fp -= body.modal_stiffness().cwiseProduct(kin.p);
+            fp.noalias() -= body.modal_stiffness() * kin.p;
             if constexpr (Effects_::template has<ModalDamping>)
-              fp -= body.modal_damping().cwiseProduct(kin.p_dot);
+              fp.noalias() -= body.modal_damping() * kin.p_dot;
           }
           f = fb;
         },
@@ -307,21 +309,19 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   }
 
   /// Adds the modal stiffness and damping (the derivatives of the elastic forces) to the
-  /// diagonal of an iteration matrix: d += k_factor K + c_factor D.
+  /// modal blocks of an iteration matrix: m += k_factor K + c_factor D.
   template <class M>
   void add_modal_stiffness_damping(M& m, Scalar k_factor, Scalar c_factor) const {
     detail::for_each_index(
         [&](auto k) {
           constexpr int K = static_cast<int>(decltype(k)::value);
-          if constexpr (modes_of < K >> 0) {
+          if constexpr (has_modes<K>) {
             const auto& body = std::get<K>(bodies);
             constexpr int o = body_offset[K] + 6;
-            for (int i = 0; i < modes_of<K>; ++i) {
-              Scalar d = k_factor * body.modal_stiffness()(i);
-              if constexpr (Effects_::template has<ModalDamping>)
-                d += c_factor * body.modal_damping()(i);
-              m(o + i, o + i) += d;
-            }
+            auto block = m.template block<modes_of<K>, modes_of<K>>(o, o);
+            block += k_factor * body.modal_stiffness();
+            if constexpr (Effects_::template has<ModalDamping>)
+              block += c_factor * body.modal_damping();
           }
         },
         std::make_index_sequence<num_bodies>{});
@@ -339,7 +339,7 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
           q.position += d.template head<3>();
           q.theta = normalized<Scalar>(compose<Scalar>(
               q.theta, exp_rotation<Scalar>(Vec3<Scalar>(d.template segment<3>(3)))));
-          if constexpr (modes_of < K >> 0) q.p += d.template tail<modes_of<K>>();
+          if constexpr (has_modes<K>) q.p += d.template tail<modes_of<K>>();
         },
         std::make_index_sequence<num_bodies>{});
   }

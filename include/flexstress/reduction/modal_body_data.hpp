@@ -31,6 +31,10 @@ struct ModalBodyData {
 
   VectorXd eigenvalues;     ///< omega^2 of the deformation modes, ascending
   VectorXd damping_ratios;  ///< modal damping ratio zeta per mode (0 = undamped)
+  /// Modal stiffness Phi^T K Phi (n x n): diag(eigenvalues) for orthonormalized modes. Kept as a
+  /// matrix so that bodies with any mode set (not orthonormal, not mass-orthogonal to rigid
+  /// motion) run through the same, general equations.
+  MatrixXd modal_stiffness;
 
   // Mode shapes at every node of the mesh (body frame): rows 3i..3i+2 belong to node i.
   // Rotations are zero at nodes without rotational DOFs (node_has_rotation == 0).
@@ -67,6 +71,7 @@ struct ModalBodyData {
     t.num_modes = k;
     t.eigenvalues = eigenvalues.head(k);
     t.damping_ratios = damping_ratios.head(k);
+    t.modal_stiffness = modal_stiffness.topLeftCorner(k, k);
     t.phi_translation = phi_translation.leftCols(k);
     t.phi_rotation = phi_rotation.leftCols(k);
     t.inertia.num_modes = k;
@@ -114,6 +119,7 @@ Result<ModalBodyData> make_modal_body(const fe::Mesh& mesh, const ComponentModes
   d.inertia = std::move(*integrals);
   d.eigenvalues = deformation->eigenvalues.head(k);
   d.damping_ratios = VectorXd::Constant(k, spec.damping_ratio);
+  d.modal_stiffness = MatrixXd(d.eigenvalues.asDiagonal());
   d.mass_residual = deformation->mass_residual;
   d.stiffness_residual = deformation->stiffness_residual;
   const Index nn = mesh.num_nodes();

@@ -1,0 +1,86 @@
+// Static equilibrium of a scene: the coordinates at which the applied forces (gravity, elastic
+// forces, springs) balance the joint reactions, with all velocities zero, at the state's time
+// (drivers at their prescribed positions). A run that starts here starts without a jolt.
+//
+// Solved by a pseudo-transient Newton iteration: S dx = -(B^T (lambda* + alpha Phi) - Q) with
+// S = K + alpha B^T B + c M (modal stiffness, constraint penalty, and c M with c = (2 pi f)^2 a
+// regularization that vanishes at convergence and keeps rigid directions that only gravity
+// holds from taking unbounded steps), and lambda* += alpha Phi after each iteration. Needs a
+// scene whose joints and drivers hold every rigid motion (a crane driven by its cylinder); a
+// free mechanism has no static equilibrium to find.
+#pragma once
+
+#include <cmath>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include "flexstress/core/status.hpp"
+#include "flexstress/dynamics/scene.hpp"
+
+namespace flexstress {
+
+struct StaticEquilibriumOptions {
+  int max_iterations = 200;
+  double tolerance = 1e-10;        ///< on the correction (m, rad, modal units)
+  double regularization_hz = 1.0;  ///< f in c = (2 pi f)^2
+  double penalty_factor = 1e6;     ///< alpha relative to the largest diagonal of S
+};
+
+/// Moves s.q to static equilibrium (v, v_dot set to zero, multipliers in s.lambda). Fails,
+/// naming the worst joint, if the iteration does not converge.
+template <class SceneT>
+Status solve_static_equilibrium(const SceneT& scene, typename SceneT::State& s,
+                                const StaticEquilibriumOptions& opt = {}) {
+  using Scalar = typename SceneT::scalar_type;
+  typename SceneT::Workspace w;
+  typename SceneT::MatVV m;
+  typename SceneT::VecV r, dx;
+  typename SceneT::VecC lambda;
+  m.setZero(SceneT::nv, SceneT::nv);
+  r.setZero(SceneT::nv);
+  dx.setZero(SceneT::nv);
+  lambda = s.lambda;
+  s.v.setZero();
+  s.v_dot.setZero();
+  s.a.setZero();
+  const Scalar c =
+      static_cast<Scalar>(std::pow(2.0 * 3.14159265358979323846 * opt.regularization_hz, 2));
+  Eigen::LLT<typename SceneT::MatVV> llt;
+  Scalar alpha = Scalar(0), last = Scalar(0);
+  for (int it = 0; it < opt.max_iterations; ++it) {
+    scene.evaluate(s, w);
+    if (it == 0 || it % 10 == 0) {
+      m.setZero();
+      scene.mass_blocks(w, m);
+      m *= c;
+      scene.add_modal_stiffness_damping(m, Scalar(1), Scalar(0));
+      alpha = static_cast<Scalar>(opt.penalty_factor) * m.diagonal().cwiseAbs().maxCoeff();
+      m.noalias() += alpha * w.jac.transpose() * w.jac;
+      llt.compute(m);
+      if (llt.info() != Eigen::Success)
+        return make_error(ErrorCode::singular_matrix,
+                          "static equilibrium: the iteration matrix is not positive definite");
+    }
+    if (it > 0) lambda.noalias() += alpha * w.phi;
+    r.noalias() = w.jac.transpose() * (lambda + alpha * w.phi) - w.force;
+    dx = -llt.solve(r);
+    scene.integrate(s, dx);
+    last = dx.cwiseAbs().maxCoeff();
+    if (!std::isfinite(static_cast<double>(last))) break;
+    if (last <= static_cast<Scalar>(opt.tolerance) &&
+        w.phi.cwiseAbs().maxCoeff() <= static_cast<Scalar>(opt.tolerance)) {
+      s.lambda = lambda;
+      return Status::success();
+    }
+  }
+  int worst = 0;
+  w.phi.cwiseAbs().maxCoeff(&worst);
+  return make_error(ErrorCode::not_converged, "static equilibrium did not converge in ",
+                    opt.max_iterations, " iterations (last correction ", static_cast<double>(last),
+                    ", largest violation in joint ", SceneT::joint_of_row(worst), " (",
+                    SceneT::joint_kind_name(SceneT::joint_of_row(worst)),
+                    ")); is every rigid motion held by a joint or driver?");
+}
+
+}  // namespace flexstress

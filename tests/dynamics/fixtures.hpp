@@ -1,0 +1,47 @@
+// Shared builders for the dynamics tests: reduced flexible bodies from FE models built in code.
+#pragma once
+
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include <flexstress/fe/beam_line.hpp>
+#include <flexstress/reduction/modal_body_data.hpp>
+
+namespace flexstress::testing {
+
+/// A straight steel beam along x from the origin, reduced by Craig-Bampton with the nodes at
+/// `interface_positions` (distances from the origin) as six-DOF interface nodes.
+struct BeamBody {
+  fe::Mesh mesh;
+  fe::BeamLine line;
+  reduction::ModalBodyData data;
+  std::vector<Index> interface_nodes;
+};
+
+inline BeamBody make_beam_body(double length, const fe::BeamSection& section, int elements,
+                               std::vector<double> interface_positions, int fixed_modes,
+                               fe::MassOptions mass = {},
+                               const fe::Material& material = fe::steel()) {
+  BeamBody b;
+  fe::BeamLineSpec spec;
+  spec.end = Vector3d(length, 0, 0);
+  spec.num_elements = elements;
+  spec.extra_positions = interface_positions;
+  spec.material = b.mesh.add_material(material);
+  spec.section = b.mesh.add_section(section);
+  b.line = fe::add_beam_line(b.mesh, spec);
+  reduction::ReductionSpec rs;
+  for (double x : interface_positions) {
+    b.interface_nodes.push_back(b.line.node_at(x));
+    rs.interface.push_back({b.line.node_at(x)});
+  }
+  rs.dynamic_modes.count = fixed_modes;
+  rs.mass = mass;
+  auto data = reduction::reduce(b.mesh, rs);
+  REQUIRE(data.ok());
+  b.data = std::move(*data);
+  return b;
+}
+
+}  // namespace flexstress::testing

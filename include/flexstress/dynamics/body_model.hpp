@@ -37,6 +37,7 @@ class BodyModel {
   static_assert(NModes >= 0, "BodyModel: the number of modes is a non-negative compile-time count");
 
  public:
+  using scalar_type = Scalar;
   static constexpr int num_modes = NModes;
   static constexpr int nv = 6 + NModes;  ///< velocities
   static constexpr int nq = 7 + NModes;  ///< coordinates (R, theta, p)

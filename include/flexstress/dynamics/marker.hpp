@@ -23,10 +23,10 @@ struct Marker {
 
 /// Builds a marker on `body` at `node` (flexible bodies; -1 for rigid bodies: then `offset` is
 /// the position) with a rigid offset and an orientation (columns: marker axes, body frame).
-template <class Body, class Scalar>
-Marker<Scalar, Body::num_modes> make_marker(const Body& body, Index node,
-                                            const Vec3<Scalar>& offset,
-                                            const Mat3<Scalar>& axes = Mat3<Scalar>::Identity()) {
+template <class Body, class Scalar = typename Body::scalar_type>
+Marker<Scalar, Body::num_modes> make_marker(
+    const Body& body, Index node, const Vec3<typename Body::scalar_type>& offset,
+    const Mat3<typename Body::scalar_type>& axes = Mat3<typename Body::scalar_type>::Identity()) {
   Marker<Scalar, Body::num_modes> m;
   m.origin = body.point(node, offset);
   m.x = body.direction(node, axes.col(0));

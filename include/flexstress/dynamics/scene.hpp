@@ -110,6 +110,9 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
 
   template <int K>
   using BodyType = std::tuple_element_t<static_cast<std::size_t>(K), BodyTuple>;
+  /// Number of equations of joint K.
+  template <int K>
+  static constexpr int joint_equations = joint_nc[static_cast<std::size_t>(K)];
   template <int K>
   static constexpr int modes_of = detail::modes_of<K, BodyTuple>::value;
   template <int K>

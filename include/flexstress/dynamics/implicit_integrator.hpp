@@ -145,22 +145,43 @@ class ImplicitIntegrator {
   /// motion (index-1 augmented Lagrangian iteration). Sets a = v_dot.
   Status initialize(State& s, int max_iterations = 100) {
     const Scalar tol = settings_.position_floor * Scalar(10);
-    factorize_projection(s);
+    scene_->update_kinematics(s, ws_);
+    scene_->update_constraints(s, ws_);
+    Scalar violation = ws_.phi.cwiseAbs().maxCoeff();
+    // Damped Newton projection: (M + alpha B^T B) dx = -alpha B^T Phi, refactorized at every
+    // iterate (setup only), with step halving when the violation grows. Large initial modal
+    // coordinates make the joints strongly nonlinear in p (node rotations I + skew(Phi_theta p)),
+    // and a full step from a stale matrix can throw the iteration off.
     for (int it = 0;; ++it) {
-      scene_->update_kinematics(s, ws_);
-      scene_->update_constraints(s, ws_);
-      if (ws_.phi.cwiseAbs().maxCoeff() <= tol) break;
-      if (it >= max_iterations)
+      if (violation <= tol) break;  // NaN falls through to the error
+      if (it >= max_iterations || !std::isfinite(static_cast<double>(violation)))
         return make_error(
             ErrorCode::not_converged,
             "initial conditions: the joints cannot be assembled at t = ", static_cast<double>(s.t),
-            " (largest violation ", static_cast<double>(ws_.phi.cwiseAbs().maxCoeff()),
-            " in joint ", SceneT::joint_of_row(worst_row(ws_.phi)), ")");
+            " (largest violation ", static_cast<double>(violation), " in joint ",
+            SceneT::joint_of_row(worst_row(ws_.phi)), ")");
+      factorize_projection(s);
       dx_.noalias() = -alpha_ * ws_.jac.transpose() * ws_.phi;
       llt_.solveInPlace(dx_);
-      scene_->integrate(s, dx_);
-      if (it % 5 == 4) factorize_projection(s);
+      if (!dx_.allFinite()) {  // reported as not converged at the top of the loop
+        violation = std::numeric_limits<Scalar>::quiet_NaN();
+        continue;
+      }
+      q_save_ = s.q;
+      for (int halving = 0;; ++halving) {
+        scene_->integrate(s, dx_);
+        scene_->update_kinematics(s, ws_);
+        scene_->update_constraints(s, ws_);
+        const Scalar trial = ws_.phi.cwiseAbs().maxCoeff();
+        if (trial < violation || halving == 30) {
+          violation = trial;
+          break;
+        }
+        s.q = q_save_;
+        dx_ *= Scalar(0.5);
+      }
     }
+    factorize_projection(s);  // the metric at the assembled configuration
     project_velocities(s, max_iterations);
     // Accelerations: (M + alpha B^T B) v_dot = Q - B^T lambda - alpha B^T conv, iterated.
     scene_->evaluate(s, ws_);
@@ -208,6 +229,11 @@ class ImplicitIntegrator {
     Scalar residual_prev = std::numeric_limits<Scalar>::infinity();
     stats_.last_factorizations = 0;
     for (; it < settings_.max_iterations; ++it) {
+      // "fresh": the matrix was factorized at this iterate. An older one (from an earlier
+      // iteration of this step too) lacks the derivatives of the mass matrix, the quadratic
+      // velocity terms and the penalty forces at the current iterate; with kHz modes excited
+      // those are large, and an unchecked stale matrix diverges within a few iterations.
+      fresh = false;
       scene_->evaluate(s, ws_);
       if (!have_factorization_ || !settings_.reuse_factorization) {
         factorize(s);
@@ -244,11 +270,6 @@ class ImplicitIntegrator {
         dx_ = -llt_.solve(r_);
       }
       previous = dx_.cwiseAbs().maxCoeff();
-#ifdef FLEXSTRESS_DEBUG_NEWTON
-      std::fprintf(stderr, "t %g it %d dx %g phi %g fresh %d |r| %g tol %g\n", double(s.t), it,
-                   double(previous), double(ws_.phi.cwiseAbs().maxCoeff()), int(fresh),
-                   double(residual), double(tol_x_));
-#endif
       stale_step = !fresh;
       if (stale_step) {
         q_save_ = s.q;
@@ -310,9 +331,7 @@ class ImplicitIntegrator {
   }
 
   /// Penalty alpha in use (after the first factorization).
-  Scalar penalty() const {
-    return alpha_;
-  }
+  Scalar penalty() const { return alpha_; }
 
  private:
   /// S = M b' + D g' + K + alpha B^T B at the current evaluation (ws_ is up to date).
@@ -340,7 +359,6 @@ class ImplicitIntegrator {
     iteration_.noalias() += alpha_ * ws_.jac.transpose() * ws_.jac;
     llt_.compute(iteration_);
     have_factorization_ = false;  // the step needs its own matrix
-    alpha_ = settings_.penalty_factor * m_ref;
   }
 
   /// v <- v - S^-1 alpha B^T (B v + Phi_t), repeated (ws_ holds B and Phi_t at s).

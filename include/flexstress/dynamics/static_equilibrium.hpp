@@ -24,7 +24,10 @@ struct StaticEquilibriumOptions {
   int max_iterations = 200;
   double tolerance = 1e-10;        ///< on the correction (m, rad, modal units)
   double regularization_hz = 1.0;  ///< f in c = (2 pi f)^2
-  double penalty_factor = 1e6;     ///< alpha relative to the largest diagonal of S
+  /// alpha B^T B relative to the largest diagonal of K + c M. The multiplier update removes
+  /// the penalty's bias, so a moderate factor converges in a few iterations; 1e6 made the
+  /// matrix of a stiff flexible body singular to double precision (condition > 1e15).
+  double penalty_factor = 1e3;
 };
 
 /// Moves s.q to static equilibrium (v, v_dot set to zero, multipliers in s.lambda). Fails,
@@ -55,7 +58,12 @@ Status solve_static_equilibrium(const SceneT& scene, typename SceneT::State& s,
       scene.mass_blocks(w, m);
       m *= c;
       scene.add_modal_stiffness_damping(m, Scalar(1), Scalar(0));
-      alpha = static_cast<Scalar>(opt.penalty_factor) * m.diagonal().cwiseAbs().maxCoeff();
+      // alpha B^T B gets penalty_factor times the largest diagonal of K + c M: scaling by B's
+      // own column norms matters for flexible bodies, whose joint rows carry node rotations
+      // Phi_theta of order 100 per unit modal coordinate.
+      const Scalar jtj = w.jac.colwise().squaredNorm().maxCoeff();
+      alpha = static_cast<Scalar>(opt.penalty_factor) * m.diagonal().cwiseAbs().maxCoeff() /
+              (jtj > Scalar(0) ? jtj : Scalar(1));
       m.noalias() += alpha * w.jac.transpose() * w.jac;
       llt.compute(m);
       if (llt.info() != Eigen::Success)
@@ -65,9 +73,9 @@ Status solve_static_equilibrium(const SceneT& scene, typename SceneT::State& s,
     if (it > 0) lambda.noalias() += alpha * w.phi;
     r.noalias() = w.jac.transpose() * (lambda + alpha * w.phi) - w.force;
     dx = -llt.solve(r);
-    scene.integrate(s, dx);
     last = dx.cwiseAbs().maxCoeff();
-    if (!std::isfinite(static_cast<double>(last))) break;
+    if (!std::isfinite(static_cast<double>(last))) break;  // never integrate NaN
+    scene.integrate(s, dx);
     if (last <= static_cast<Scalar>(opt.tolerance) &&
         w.phi.cwiseAbs().maxCoeff() <= static_cast<Scalar>(opt.tolerance)) {
       s.lambda = lambda;

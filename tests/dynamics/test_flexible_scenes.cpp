@@ -1,0 +1,235 @@
+// Flexible bodies in scenes. References: the full FE model (pinned-free beam frequencies and the
+// static deflection under self-weight, solved by the FE kernel without reduction), convergence
+// as modes are added, and the stability theory of the integrators (A-stable implicit, RK4
+// bounded by h w <= 2.78).
+#include <cmath>
+
+#include <doctest/doctest.h>
+
+#include <flexstress/dynamics/explicit_integrator.hpp>
+#include <flexstress/dynamics/implicit_integrator.hpp>
+#include <flexstress/dynamics/linearize.hpp>
+#include <flexstress/dynamics/static_equilibrium.hpp>
+#include <flexstress/fe/eigen_solver.hpp>
+#include <flexstress/fe/static_solver.hpp>
+
+#include "fixtures.hpp"
+
+using namespace flexstress;
+
+namespace {
+
+// A 2 m steel RHS 40 x 20 x 2 mm beam hinged at x = 0 (revolute about z): slender enough that
+// gravity bends it visibly, stiff enough to have kHz modes.
+const fe::BeamSection kSection = fe::rectangular_hollow_section(0.04, 0.02, 0.002);
+constexpr double kLength = 2.0;
+
+testing::BeamBody hinged_beam(int fixed_modes) {
+  return testing::make_beam_body(kLength, kSection, 24, {0.0}, fixed_modes);
+}
+
+template <int N, class Scalar = double, class Eff = Effects<Gravity, QuadraticVelocity>>
+using Hinged = Scene<Scalar, Bodies<FFRFBody<N, Scalar>>, Joints<Revolute<ground, 0>>, Eff>;
+
+template <class SceneT>
+SceneT make_hinged(const reduction::ModalBodyData& data, Index hinge_node) {
+  SceneT scene;
+  using Body = typename SceneT::template BodyType<0>;
+  auto body = Body::from_modal_data(data);
+  REQUIRE(body.ok());
+  scene.template body<0>() = *body;
+  using S = typename SceneT::scalar_type;
+  scene.template joint<0>().marker_i = fixed_marker<S>(Vec3<S>::Zero());
+  scene.template joint<0>().marker_j =
+      make_marker(scene.template body<0>(), hinge_node, Vec3<S>::Zero());
+  return scene;
+}
+
+}  // namespace
+
+// The mode counts below (2, 4, 8, 16 and float 4) are shared between the cases on purpose: each
+// count instantiates the whole scene and integrators once more (compile time).
+
+TEST_CASE("hinged flexible beam: linearized scene frequencies equal the pinned-free FE model's") {
+  constexpr int N = 16;
+  auto beam = hinged_beam(N);
+  auto scene = make_hinged<Hinged<N>>(beam.data, beam.interface_nodes[0]);
+  scene.gravity.setZero();
+  Hinged<N>::State s;
+  auto lin = linearize(scene, s);
+  REQUIRE(lin.ok());
+  // Reference: the full FE beam with a hinge (translations and rx, ry fixed at x = 0).
+  fe::BoundaryConditions bc;
+  const Index root = beam.interface_nodes[0];
+  bc.pin(root).fix(root, 3).fix(root, 4);
+  auto full = fe::assemble(beam.mesh, bc);
+  REQUIRE(full.ok());
+  fe::EigenOptions eo;
+  eo.num_modes = 6;
+  auto ref = fe::solve_eigen(full->stiffness, full->mass, eo);
+  REQUIRE(ref.ok());
+  // The scene has one zero-frequency motion (the free rotation); compare the next ones.
+  CHECK(std::abs(lin->frequencies_hz(0)) < 1e-3);
+  const VectorXd fe_hz = ref->frequencies_hz();
+  for (int i = 1; i < 6; ++i) {
+    CAPTURE(i);
+    const double f = lin->frequencies_hz(i), fr = fe_hz(i);
+    MESSAGE("mode " << i << ": scene " << f << " Hz, FE " << fr << " Hz");
+    CHECK(f >= fr * (1 - 1e-6));                    // Rayleigh-Ritz: never below the full model
+    CHECK(f == doctest::Approx(fr).epsilon(1e-3));  // within the reduction's own error
+  }
+}
+
+namespace {
+
+template <int N>
+Vector3d flexible_pendulum_tip(double t_end) {
+  auto beam = hinged_beam(N);
+  auto scene = make_hinged<Hinged<N>>(beam.data, beam.interface_nodes[0]);
+  typename Hinged<N>::State s;
+  ImplicitIntegrator<Hinged<N>> integ(scene);
+  REQUIRE(integ.initialize(s).ok());
+  const int steps = static_cast<int>(std::lround(t_end / integ.settings().step));
+  for (int i = 0; i < steps; ++i) REQUIRE(integ.step(s) == StepStatus::ok);
+  const Index tip = beam.line.nodes.back();
+  const auto& q = s.template coordinates<0>();
+  const Vector3d local = scene.template body<0>().point(tip).local([&] {
+    BodyKinematics<double, N> k;
+    k.p = q.p;
+    return k;
+  }());
+  return q.position + rotation_matrix(q.theta) * local;
+}
+
+}  // namespace
+
+TEST_CASE("flexible pendulum under gravity converges as modes are added") {
+  const Vector3d t2 = flexible_pendulum_tip<2>(0.5), t4 = flexible_pendulum_tip<4>(0.5),
+                 t8 = flexible_pendulum_tip<8>(0.5), t16 = flexible_pendulum_tip<16>(0.5);
+  const double e2 = (t2 - t16).norm(), e4 = (t4 - t16).norm(), e8 = (t8 - t16).norm();
+  MESSAGE("tip at 0.5 s, distance to the 16-mode result: 2 modes " << e2 << " m, 4 modes " << e4
+                                                                   << " m, 8 modes " << e8 << " m");
+  CHECK(e4 < e2);
+  CHECK(e8 < e4);
+  CHECK(e8 < 1e-3 * kLength);
+  // It really swung (released horizontal, the tip falls about a metre in 0.5 s).
+  CHECK(t16.y() < -0.5);
+}
+
+TEST_CASE("stiff modes: kHz modes stay stable at h = 1 ms (implicit); RK4 refuses that step") {
+  constexpr int N = 16;
+  auto beam = hinged_beam(N);
+  auto scene = make_hinged<Hinged<N>>(beam.data, beam.interface_nodes[0]);
+  const double f_max = scene.max_modal_frequency() / (2 * 3.14159265358979323846);
+  MESSAGE("highest modal frequency " << f_max << " Hz");
+  REQUIRE(f_max > 2000.0);  // h w > 12 at h = 1 ms: far outside RK4's bound 2.78
+  Hinged<N>::State s;
+  // Excite every mode: the implicit integrator must damp or keep them, never amplify.
+  for (int k = 0; k < N; ++k) s.coordinates<0>().p(k) = 1e-4;
+  ImplicitIntegrator<Hinged<N>> integ(scene);  // h = 1 ms, rho = 0.8
+  const Status init = integ.initialize(s);
+  if (!init) MESSAGE(init.error().what());
+  REQUIRE(init.ok());
+  auto& w = integ.workspace();
+  scene.update_kinematics(s, w);
+  const double e0 = scene.energy(w).total();
+  double e_max = e0;
+  for (int i = 0; i < 2000; ++i) {
+    REQUIRE(integ.step(s) == StepStatus::ok);
+    scene.update_kinematics(s, w);
+    e_max = std::max(e_max, scene.energy(w).total());
+  }
+  CHECK(s.v.allFinite());
+  CHECK(e_max <= e0 + 1e-9 * std::abs(e0));
+  // The explicit integrator reports the stability violation instead of blowing up.
+  ExplicitIntegrator<Hinged<N>>::Settings es;
+  es.step = 1e-3;
+  ExplicitIntegrator<Hinged<N>> rk4(scene, es);
+  Hinged<N>::State s2;
+  CHECK(rk4.stability_number() > 2.78);
+  CHECK(rk4.step(s2) == StepStatus::step_above_stability_limit);
+  CHECK(s2.t == 0.0);  // nothing was done
+}
+
+TEST_CASE("explicit RK4 agrees with the implicit integrator on a non-stiff flexible pendulum") {
+  constexpr int N = 2;
+  auto beam = hinged_beam(N);
+  auto scene = make_hinged<Hinged<N>>(beam.data, beam.interface_nodes[0]);
+  ExplicitIntegrator<Hinged<N>>::Settings es;
+  es.step = 0.5 / scene.max_modal_frequency();  // h w = 0.5
+  ExplicitIntegrator<Hinged<N>> rk4(scene, es);
+  Hinged<N>::State a;
+  for (double t = 0; t < 0.3 - 1e-12; t += es.step) REQUIRE(rk4.step(a) == StepStatus::ok);
+  ImplicitIntegrator<Hinged<N>>::Settings is;
+  is.step = es.step / 4;
+  ImplicitIntegrator<Hinged<N>> gen(scene, is);
+  Hinged<N>::State b;
+  REQUIRE(gen.initialize(b).ok());
+  while (b.t < a.t - 1e-12) REQUIRE(gen.step(b) == StepStatus::ok);
+  const double diff = (a.coordinates<0>().position - b.coordinates<0>().position).norm() +
+                      (a.coordinates<0>().theta - b.coordinates<0>().theta).norm();
+  MESSAGE("RK4 vs generalized-alpha after " << a.t << " s: " << diff);
+  CHECK(diff < 1e-4);
+}
+
+TEST_CASE("static equilibrium of a clamped flexible cantilever matches the FE static solution") {
+  constexpr int N = 16;
+  auto beam = testing::make_beam_body(kLength, kSection, 24, {0.0}, N);
+  using Clamped = Scene<double, Bodies<FFRFBody<N>>, Joints<Fixed<ground, 0>>, Effects<Gravity>>;
+  Clamped scene;
+  auto body = FFRFBody<N>::from_modal_data(beam.data);
+  REQUIRE(body.ok());
+  scene.body<0>() = *body;
+  scene.joint<0>().marker_i = fixed_marker<double>(Vector3d::Zero());
+  scene.joint<0>().marker_j =
+      make_marker(scene.body<0>(), beam.interface_nodes[0], Vector3d::Zero());
+  Clamped::State s;
+  const Status eq = solve_static_equilibrium(scene, s);
+  if (!eq) MESSAGE(eq.error().what());
+  REQUIRE(eq.ok());
+  const Index tip = beam.line.nodes.back();
+  BodyKinematics<double, N> k;
+  k.p = s.coordinates<0>().p;
+  const double tip_sim = (s.coordinates<0>().position + rotation_matrix(s.coordinates<0>().theta) *
+                                                            scene.body<0>().point(tip).local(k))
+                             .y();
+  // FE: clamped at x = 0, self-weight as consistent nodal loads M g.
+  fe::BoundaryConditions bc;
+  bc.clamp(beam.interface_nodes[0]);
+  auto full = fe::assemble(beam.mesh, bc);
+  REQUIRE(full.ok());
+  auto solver = fe::StaticSolver::factorize(beam.mesh, *full);
+  REQUIRE(solver.ok());
+  VectorXd g = VectorXd::Zero(full->dofs.size());
+  for (Index n = 0; n < beam.mesh.num_nodes(); ++n) g(full->dofs.dof(n, 1)) = -9.81;
+  const VectorXd u = solver->solve(full->mass_all * g);
+  const double tip_fe = u(full->dofs.dof(tip, 1));
+  // Beam theory for the same load: q L^4 / (8 E I).
+  const double q = 7850 * kSection.area * 9.81;
+  const double tip_theory = -q * std::pow(kLength, 4) / (8 * 210e9 * kSection.iz);
+  MESSAGE("tip deflection: scene " << tip_sim << " m, FE " << tip_fe << " m, beam theory "
+                                   << tip_theory);
+  CHECK(tip_sim == doctest::Approx(tip_fe).epsilon(1e-3));
+  CHECK(tip_fe == doctest::Approx(tip_theory).epsilon(5e-3));  // rotary inertia / shear: none here
+}
+
+TEST_CASE("a float scene runs: Euler parameters stay unit to float precision") {
+  constexpr int N = 4;
+  auto beam = hinged_beam(N);
+  auto scene = make_hinged<Hinged<N, float>>(beam.data, beam.interface_nodes[0]);
+  Hinged<N, float>::State s;
+  ImplicitIntegrator<Hinged<N, float>> integ(scene);
+  REQUIRE(integ.initialize(s).ok());
+  for (int i = 0; i < 500; ++i) REQUIRE(integ.step(s) == StepStatus::ok);
+  CHECK(std::abs(s.coordinates<0>().theta.norm() - 1.0f) < 1e-6f);
+  // Same motion as double to float accuracy.
+  auto scene_d = make_hinged<Hinged<N>>(beam.data, beam.interface_nodes[0]);
+  Hinged<N>::State sd;
+  ImplicitIntegrator<Hinged<N>> integ_d(scene_d);
+  REQUIRE(integ_d.initialize(sd).ok());
+  for (int i = 0; i < 500; ++i) REQUIRE(integ_d.step(sd) == StepStatus::ok);
+  const double diff =
+      (s.coordinates<0>().position.cast<double>() - sd.coordinates<0>().position).norm();
+  MESSAGE("float vs double frame position after 0.5 s: " << diff << " m");
+  CHECK(diff < 1e-3);
+}

@@ -21,6 +21,9 @@
 #include "flexstress/fe/stress_recovery.hpp"
 #include "flexstress/fe/vtk_writer.hpp"
 #include "flexstress/reduction/modal_body_data.hpp"
+#include "flexstress/stress/host_point.hpp"
+#include "flexstress/stress/stress_outputs.hpp"
+#include "flexstress/stress/sub_model.hpp"
 
 // X(return type, qualified name, parameter list) for each precompute entry point.
 #define FLEXSTRESS_PRECOMPUTE_INSTANCES(X)                                                       \
@@ -84,7 +87,18 @@
   X(Result<reduction::ModalBodyData>, reduction::make_modal_body,                                \
     (const fe::Mesh&, const reduction::ComponentModes&, const reduction::ReductionSpec&))        \
   X(Result<reduction::ModalBodyData>, reduction::reduce,                                         \
-    (const fe::Mesh&, const reduction::ReductionSpec&))
+    (const fe::Mesh&, const reduction::ReductionSpec&))                                          \
+  X(Result<MatrixXd>, stress::boundary_modes,                                                    \
+    (const reduction::ModalBodyData&, const std::vector<stress::HostPoint>&))                    \
+  X(Result<stress::SubModel>, stress::SubModel::build,                                           \
+    (fe::Mesh, const std::vector<stress::SubModelAttachment>&))                                  \
+  X(Result<MatrixXd>, stress::SubModel::stress_influence, (const std::vector<Vector3d>&) const)  \
+  X(Result<MatrixXd>, stress::SubModel::displacement_influence,                                  \
+    (const std::vector<Vector3d>&) const)                                                        \
+  X(VectorXd, stress::SubModel::solve, (const VectorXd&) const)                                  \
+  X(Result<VectorXd>, stress::SubModel::stresses_by_resolve,                                     \
+    (const std::vector<Vector3d>&, const VectorXd&) const)                                       \
+  X(Result<MatrixXd>, stress::StressOutputs::rows, (const stress::SubModel&) const)
 
 #if defined(FLEXSTRESS_INSTANTIATE_PRECOMPUTE)
 #define FLEXSTRESS_PRECOMPUTE_INSTANCE(R, F, A) template R F<void> A;

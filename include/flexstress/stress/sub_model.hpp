@@ -1,0 +1,173 @@
+// A sub-model: a refined brick model of a welded detail tied to its host body by rigid,
+// massless webs (Rantalainen et al. 2013: 250 rigid beams from each end section to a master node
+// on the beam axis; u_s = u_m + theta_m x (x_s - x_m)). The sub-model is solved quasi-statically
+// from the masters' displacements (one-way coupling), and since it is linear, once per unit
+// boundary DOF: the columns of U_b (all-DOF displacements, 6 k of them for k attachments) make
+// every later read-out a small dense product, stress = S U_b u_b = H u_b.
+//
+// Coordinates: the sub-model mesh is given in the host body's frame (the boom's frame for the
+// crane), so u_b = Phi_b p needs no rotation.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/precompute.hpp"
+#include "flexstress/core/status.hpp"
+#include "flexstress/core/types.hpp"
+#include "flexstress/fe/assembly.hpp"
+#include "flexstress/fe/boundary_conditions.hpp"
+#include "flexstress/fe/brick_locator.hpp"
+#include "flexstress/fe/mesh.hpp"
+#include "flexstress/fe/static_solver.hpp"
+#include "flexstress/fe/stress_recovery.hpp"
+#include "flexstress/stress/host_point.hpp"
+
+namespace flexstress::stress {
+
+/// One attachment: the master point (where the host's deformation is read) and the sub-model
+/// face nodes that follow it rigidly.
+struct SubModelAttachment {
+  Vector3d master = Vector3d::Zero();
+  std::vector<Index> face_nodes;
+};
+
+class SubModel {
+ public:
+  /// Adds the masters and rigid links to `mesh`, prescribes all six DOFs of every master,
+  /// factorizes once and solves for each unit boundary DOF. Fails, naming the attachment and
+  /// node, for empty or overlapping face sets and nodes that do not exist; a sub-model the
+  /// attachments leave free to move gets the static solver's explanation.
+  FLEXSTRESS_PRECOMPUTE
+  static Result<SubModel> build(fe::Mesh mesh, const std::vector<SubModelAttachment>& attachments) {
+    if (attachments.empty())
+      return make_error(ErrorCode::invalid_argument, "sub-model: no attachments given");
+    if (mesh.hexes().empty())
+      return make_error(ErrorCode::invalid_argument, "sub-model: the mesh has no bricks");
+    std::vector<int> owner(static_cast<std::size_t>(mesh.num_nodes()), -1);
+    for (std::size_t a = 0; a < attachments.size(); ++a) {
+      const auto& att = attachments[a];
+      if (att.face_nodes.empty())
+        return make_error(ErrorCode::invalid_argument, "sub-model attachment ", a,
+                          ": the face node set is empty");
+      if (!att.master.allFinite())
+        return make_error(ErrorCode::invalid_argument, "sub-model attachment ", a,
+                          ": the master point is not finite");
+      for (Index n : att.face_nodes) {
+        if (n < 0 || n >= mesh.num_nodes())
+          return make_error(ErrorCode::invalid_argument, "sub-model attachment ", a, ": face node ",
+                            n, " does not exist (the mesh has ", mesh.num_nodes(), " nodes)");
+        int& o = owner[static_cast<std::size_t>(n)];
+        if (o >= 0)
+          return make_error(
+              ErrorCode::invalid_argument, "sub-model attachment ", a, ": face node ", n,
+              o == static_cast<int>(a) ? " is listed twice" : " also belongs to attachment ",
+              o == static_cast<int>(a) ? std::string() : std::to_string(o),
+              " (face sets must not overlap)");
+        o = static_cast<int>(a);
+      }
+    }
+    SubModel s;
+    fe::BoundaryConditions bc;
+    for (const auto& att : attachments) {
+      const Index m = mesh.add_node(att.master);
+      mesh.add_rigid_link(m, att.face_nodes);
+      s.masters_.push_back(m);
+      bc.clamp(m);  // components 0..5 in order: v = u_b
+    }
+    s.mesh_ = std::make_unique<fe::Mesh>(std::move(mesh));
+    auto model = fe::assemble(*s.mesh_, bc);
+    if (!model) return model.error();
+    s.model_ = std::make_unique<fe::AssembledModel>(std::move(*model));
+    auto solver = fe::StaticSolver::factorize(*s.mesh_, *s.model_);
+    if (!solver)
+      return make_error(solver.error().code, "sub-model with ", attachments.size(),
+                        " attachments: ", solver.error().message);
+    s.solver_ = std::make_unique<fe::StaticSolver>(std::move(*solver));
+    const Index nb = 6 * static_cast<Index>(attachments.size());
+    const Index nd = s.model_->dofs.size();
+    s.unit_ = MatrixXd::Zero(nd, nb);
+    const VectorXd zero_load = VectorXd::Zero(nd);
+    for (Index j = 0; j < nb; ++j) {
+      VectorXd v = VectorXd::Zero(nb);
+      v(j) = 1.0;
+      s.unit_.col(j) = s.solver_->solve(zero_load, v);
+    }
+    auto locator = fe::BrickLocator::build(*s.mesh_);
+    if (!locator) return locator.error();
+    s.locator_ = std::make_unique<fe::BrickLocator>(std::move(*locator));
+    return s;
+  }
+
+  Index num_attachments() const { return static_cast<Index>(masters_.size()); }
+  Index num_boundary_dofs() const { return 6 * num_attachments(); }
+  const fe::Mesh& mesh() const { return *mesh_; }
+  const fe::AssembledModel& model() const { return *model_; }
+  /// Master node of attachment a in mesh().
+  Index master_node(Index a) const { return masters_[static_cast<std::size_t>(a)]; }
+  /// All-DOF displacements per unit boundary DOF (dofs x 6 k).
+  const MatrixXd& unit_displacements() const { return unit_; }
+  const fe::BrickLocator& locator() const { return *locator_; }
+
+  /// H (6 P x 6 k): Voigt stresses at the points per unit boundary DOF. Fails, naming the point,
+  /// for a point outside the brick mesh.
+  FLEXSTRESS_PRECOMPUTE
+  Result<MatrixXd> stress_influence(const std::vector<Vector3d>& points) const {
+    auto s = fe::point_stress_operator(*mesh_, model_->dofs, *locator_, points);
+    if (!s) return s.error();
+    return MatrixXd(*s * unit_);
+  }
+
+  /// (3 P x 6 k): displacements at the points per unit boundary DOF (trilinear interpolation
+  /// in the containing brick).
+  FLEXSTRESS_PRECOMPUTE
+  Result<MatrixXd> displacement_influence(const std::vector<Vector3d>& points) const {
+    MatrixXd out = MatrixXd::Zero(3 * static_cast<Index>(points.size()), num_boundary_dofs());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      auto bp = locator_->locate(points[i]);
+      if (!bp) return bp.error();
+      const auto& h = mesh_->hexes()[static_cast<std::size_t>(bp->element)];
+      const Eigen::Matrix<double, 8, 1> n = fe::hex8::shape(bp->xi);
+      for (int k = 0; k < 8; ++k)
+        for (int c = 0; c < 3; ++c)
+          out.row(3 * static_cast<Index>(i) + c) +=
+              n(k) * unit_.row(model_->dofs.dof(h.nodes[static_cast<std::size_t>(k)], c));
+    }
+    return out;
+  }
+
+  /// The reference path: all-DOF displacements for boundary values u_b by a fresh solve with
+  /// the factorization (what the influence matrix replaces).
+  FLEXSTRESS_PRECOMPUTE
+  VectorXd solve(const VectorXd& u_b) const {
+    return solver_->solve(VectorXd::Zero(model_->dofs.size()), u_b);
+  }
+
+  /// Reference path for stresses at points: re-solve, then recover (allocates; not per step).
+  FLEXSTRESS_PRECOMPUTE
+  Result<VectorXd> stresses_by_resolve(const std::vector<Vector3d>& points,
+                                       const VectorXd& u_b) const {
+    const VectorXd u = solve(u_b);
+    VectorXd out(6 * static_cast<Index>(points.size()));
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      auto s = fe::stress_at_point(*mesh_, model_->dofs, *locator_, u, points[i]);
+      if (!s) return s.error();
+      out.segment<6>(6 * static_cast<Index>(i)) = *s;
+    }
+    return out;
+  }
+
+ private:
+  SubModel() = default;
+  std::unique_ptr<fe::Mesh> mesh_;  // heap: the model, solver and locator point into these
+  std::unique_ptr<fe::AssembledModel> model_;
+  std::unique_ptr<fe::StaticSolver> solver_;
+  std::unique_ptr<fe::BrickLocator> locator_;
+  std::vector<Index> masters_;
+  MatrixXd unit_;
+};
+
+}  // namespace flexstress::stress

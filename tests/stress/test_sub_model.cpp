@@ -1,0 +1,291 @@
+// Sub-models tied to a host by rigid webs (Rantalainen et al. 2013). References: Euler-Bernoulli
+// beam theory (far-field stress M c / I and N / A with the section force from the strain energy,
+// exact Hermite interpolation of a beam loaded at its nodes), rigid-body kinematics (no strain
+// from rigid boundary motion), and the full sub-model re-solve that the influence matrix and the
+// fused modal rows replace.
+#include <cmath>
+#include <random>
+
+#include <doctest/doctest.h>
+
+#include <flexstress/fe/beam_line.hpp>
+#include <flexstress/fe/rhs_attachment_mesh.hpp>
+#include <flexstress/fe/static_solver.hpp>
+#include <flexstress/stress/fused_stress.hpp>
+#include <flexstress/stress/host_point.hpp>
+#include <flexstress/stress/stress_outputs.hpp>
+#include <flexstress/stress/sub_model.hpp>
+
+#include "dynamics/fixtures.hpp"
+
+using namespace flexstress;
+using namespace flexstress::stress;
+
+namespace {
+
+fe::RhsAttachmentMesh rhs(double density, double x0 = 0.5, double x1 = 0.8) {
+  fe::RhsAttachmentSpec spec;
+  spec.density = density;
+  spec.x0 = x0;
+  spec.x1 = x1;
+  auto r = fe::make_rhs_attachment_mesh(spec);
+  REQUIRE_MESSAGE(r.ok(), r.error().what());
+  return std::move(r).value();
+}
+
+SubModel tie(const fe::RhsAttachmentMesh& r) {
+  std::vector<SubModelAttachment> att = {{Vector3d(r.spec.x0, 0, 0), r.end_section_x0},
+                                         {Vector3d(r.spec.x1, 0, 0), r.end_section_x1}};
+  auto s = SubModel::build(r.mesh, att);
+  REQUIRE_MESSAGE(s.ok(), s.error().what());
+  return std::move(s).value();
+}
+
+// u_b of a rigid motion (translation a, small rotation b about the origin) of all masters.
+VectorXd rigid_boundary(const SubModel& s, const Vector3d& a, const Vector3d& b) {
+  VectorXd u(s.num_boundary_dofs());
+  for (Index k = 0; k < s.num_attachments(); ++k) {
+    u.segment<3>(6 * k) = a + b.cross(s.mesh().node(s.master_node(k)));
+    u.segment<3>(6 * k + 3) = b;
+  }
+  return u;
+}
+
+}  // namespace
+
+TEST_CASE("sub-model: rigid boundary motion gives no stress, unit translation moves every node") {
+  const auto r = rhs(0.6);
+  const SubModel s = tie(r);
+  CHECK(s.num_boundary_dofs() == 12);
+  const std::vector<Vector3d> pts = {
+      {r.weld_toe_x + 0.0016, 0.075, 0.0}, {0.56, -0.075, 0.02}, {0.7, 0.05, 0.05}};
+  auto h = s.stress_influence(pts);
+  REQUIRE(h.ok());
+  // Scale: the stress of a unit relative rotation, |H| over the rotation columns.
+  const double scale = h->cwiseAbs().maxCoeff();
+  const Vector3d axes[6] = {Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ(),
+                            Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ()};
+  for (int k = 0; k < 6; ++k) {
+    CAPTURE(k);
+    const VectorXd ub = k < 3 ? rigid_boundary(s, axes[k], Vector3d::Zero())
+                              : rigid_boundary(s, Vector3d::Zero(), axes[k]);
+    CHECK((*h * ub).cwiseAbs().maxCoeff() < 1e-10 * scale);
+  }
+  // A unit x translation of both masters moves every node by exactly (1, 0, 0).
+  const VectorXd u = s.solve(rigid_boundary(s, Vector3d::UnitX(), Vector3d::Zero()));
+  const auto& dofs = s.model().dofs;
+  double worst = 0;
+  for (Index n = 0; n < s.mesh().num_nodes(); ++n)
+    worst = std::max(worst, std::abs(u(dofs.dof(n, 0)) - 1.0) + std::abs(u(dofs.dof(n, 1))));
+  CHECK(worst < 1e-9);
+}
+
+TEST_CASE("sub-model: far from the detail, bending and axial stress match beam theory") {
+  // A longer segment (0.2 to 1.1 m) so that the read-out is a section height from the rib and
+  // from the rigid end sections (St.-Venant). The section force comes from the strain energy:
+  // u^T K u = M theta (pure bending by a relative end rotation theta) or N delta.
+  const auto r = rhs(0.6, 0.2, 1.1);
+  const SubModel s = tie(r);
+  const fe::BeamSection sec = fe::rectangular_hollow_section(0.150, 0.100, 0.004);
+  const double c = 0.075;
+  for (int load = 0; load < 2; ++load) {
+    CAPTURE(load);
+    // Pure bending: end rotations -theta/2 and +theta/2 about z with the ends held, which bends
+    // a prismatic beam into a circular arc (uniform curvature theta / L, no shear). Axial:
+    // the far end pulled by delta.
+    VectorXd ub = VectorXd::Zero(12);
+    const double amount = 1e-3;
+    if (load == 0) {
+      ub(5) = -amount / 2;
+      ub(11) = amount / 2;
+    } else {
+      ub(6) = amount;
+    }
+    const VectorXd u = s.solve(ub);
+    const double work = u.dot(s.model().stiffness_all * u);  // = M theta or N delta
+    const double force = work / amount;
+    for (double x : {0.35, 0.95})
+      for (const Vector3d& p : {Vector3d(x, c, 0), Vector3d(x, -c, 0), Vector3d(x, 0.05, 0.05),
+                                Vector3d(x, -c, 0.03)}) {
+        CAPTURE(p.transpose());
+        auto sigma = s.stresses_by_resolve({p}, ub);
+        REQUIRE(sigma.ok());
+        const double beam = load == 0 ? -force * p.y() / sec.iz : force / sec.area;
+        CHECK((*sigma)(0) == doctest::Approx(beam).epsilon(0.02));
+      }
+  }
+}
+
+TEST_CASE("influence, fused modal rows and the full re-solve agree") {
+  // Host: a 1.2 m RHS beam reduced by Craig-Bampton (interfaces at both ends), with nodes at
+  // the sub-model's ends 0.5 and 0.8 m. The sub-model reads a tensor, a hot spot and a gauge.
+  constexpr int N = 8;
+  const fe::BeamSection sec = fe::rectangular_hollow_section(0.150, 0.100, 0.004);
+  auto host = testing::make_beam_body(1.2, sec, 12, {0.0, 1.2}, N);
+  const auto r = rhs(0.6);
+  const SubModel s = tie(r);
+  const std::vector<HostPoint> hosts = {HostPoint::at_node(host.line.node_at(0.5)),
+                                        HostPoint::at_node(host.line.node_at(0.8))};
+  auto phi_b = boundary_modes(host.data, hosts);
+  REQUIRE(phi_b.ok());
+  StressOutputs out;
+  const Vector3d toe(r.weld_toe_x, 0.075, 0.0);
+  const Index tensor = out.add_tensor(toe + Vector3d(0.002, 0, 0), "near toe");
+  HotSpotLocation hs;
+  hs.toe = toe;
+  hs.away = Vector3d::UnitX();
+  hs.thickness = 0.004;
+  auto hot = out.add_hot_spot(hs, "hot spot a");
+  REQUIRE(hot.ok());
+  auto gauge = out.add_strain_gauge(Vector3d(0.56, 0.075, 0.0), Vector3d::UnitX(), 0.006, "SG1");
+  REQUIRE(gauge.ok());
+  auto rows = out.rows(s);
+  REQUIRE(rows.ok());
+  auto fused = FusedStress<N>::build(*rows, *phi_b);
+  REQUIRE(fused.ok());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uni(-1e-3, 1e-3);
+  for (int trial = 0; trial < 3; ++trial) {
+    Eigen::Matrix<double, N, 1> p;
+    for (int k = 0; k < N; ++k) p(k) = uni(rng);
+    VectorXd y_fused(out.num_outputs()), y_influence(out.num_outputs());
+    fused->evaluate(p, y_fused);
+    fused->evaluate_by_influence(p, y_influence);
+    // Re-solve with u_b = Phi_b p, then recover the same outputs by hand.
+    const VectorXd ub = phi_b->leftCols(N) * p;  // the host has 14 modes; the scene keeps 8
+    auto ref = s.stresses_by_resolve(out.stress_points(), ub);
+    REQUIRE(ref.ok());
+    const double scale = y_fused.cwiseAbs().maxCoeff();
+    REQUIRE(scale > 0);
+    for (int c = 0; c < 6; ++c) CHECK(std::abs(y_fused(tensor + c) - (*ref)(c)) < 1e-9 * scale);
+    auto rule = hot_spot_rule(hs.rule, hs.thickness);
+    double hot_ref = 0;
+    for (std::size_t i = 0; i < rule->weights.size(); ++i)
+      hot_ref += rule->weights[i] * (*ref)(6 * static_cast<Index>(i + 1));  // sigma_xx
+    CHECK(std::abs(y_fused(*hot) - hot_ref) < 1e-9 * scale);
+    CHECK((y_fused - y_influence).cwiseAbs().maxCoeff() < 1e-9 * scale);
+    CHECK(fused->evaluate(*hot, p) == doctest::Approx(y_fused(*hot)).epsilon(1e-12));
+    // The gauge against the strain at its centre: uniform along x there, so the average equals
+    // the point strain eps_xx = (sigma_xx - nu (sigma_yy + sigma_zz)) / E on the surface.
+    auto centre = s.stresses_by_resolve({Vector3d(0.56, 0.075, 0.0)}, ub);
+    REQUIRE(centre.ok());
+    const double eps = ((*centre)(0) - 0.3 * ((*centre)(1) + (*centre)(2))) / 210e9;
+    CHECK(y_fused(*gauge) == doctest::Approx(eps).epsilon(0.02));
+  }
+}
+
+TEST_CASE("Hermite boundary interpolation is exact for a beam loaded at its nodes; linear is not") {
+  // A cantilever (Euler-Bernoulli: no shear areas) of 4 elements under a tip force P:
+  // v(x) = P x^2 (3 L - x) / (6 E I), theta_z = P x (2 L - x) / (2 E I) (any mechanics text).
+  fe::BeamSection sec = fe::rectangular_hollow_section(0.150, 0.100, 0.004);
+  sec.shear_area_y = sec.shear_area_z = 0.0;
+  fe::Mesh mesh;
+  fe::BeamLineSpec spec;
+  const double len = 2.0, force = 1e3, ei = 210e9 * sec.iz;
+  spec.end = Vector3d(len, 0, 0);
+  spec.num_elements = 4;
+  spec.material = mesh.add_material(fe::steel());
+  spec.section = mesh.add_section(sec);
+  const auto line = fe::add_beam_line(mesh, spec);
+  fe::BoundaryConditions bc;
+  bc.clamp(line.nodes.front());
+  auto model = fe::assemble(mesh, bc);
+  REQUIRE(model.ok());
+  auto solver = fe::StaticSolver::factorize(mesh, *model);
+  REQUIRE(solver.ok());
+  auto f = fe::load_vector(model->dofs, {{line.nodes.back(), 1, force}});
+  REQUIRE(f.ok());
+  const VectorXd u = solver->solve(*f);
+  auto nodal = [&](Index n) {
+    Eigen::Matrix<double, 6, 1> d;
+    for (int c = 0; c < 6; ++c) d(c) = u(model->dofs.dof(n, c));
+    return d;
+  };
+  double err_linear = 0, err_hermite = 0, err_hermite_rot = 0;
+  const double v_tip = force * len * len * len / (3 * ei);
+  for (int e = 0; e < 4; ++e)
+    for (double xi : {0.25, 0.5, 0.8}) {
+      const Index a = line.nodes[static_cast<std::size_t>(e)],
+                  b = line.nodes[static_cast<std::size_t>(e + 1)];
+      Eigen::Matrix<double, 12, 1> ab;
+      ab << nodal(a), nodal(b);
+      const double x = (e + xi) * len / 4;
+      const double v = force * x * x * (3 * len - x) / (6 * ei);
+      const double th = force * x * (2 * len - x) / (2 * ei);
+      const Eigen::Matrix<double, 6, 1> lin =
+          beam_point_interpolation(mesh.node(a), mesh.node(b), xi, BoundaryInterpolation::linear) *
+          ab;
+      const Eigen::Matrix<double, 6, 1> her =
+          beam_point_interpolation(mesh.node(a), mesh.node(b), xi, BoundaryInterpolation::hermite) *
+          ab;
+      err_linear = std::max(err_linear, std::abs(lin(1) - v));
+      err_hermite = std::max(err_hermite, std::abs(her(1) - v));
+      err_hermite_rot = std::max(err_hermite_rot, std::abs(her(5) - th));
+    }
+  MESSAGE("tip load: max deflection error linear " << err_linear / v_tip << ", Hermite "
+                                                   << err_hermite / v_tip << " of the tip value");
+  CHECK(err_hermite < 1e-10 * v_tip);
+  CHECK(err_hermite_rot < 1e-10 * force * len * len / (2 * ei));
+  CHECK(err_linear > 1e-3 * v_tip);
+  // Out of plane (x-z) the same with theta_y = -dw/dx.
+  auto fz = fe::load_vector(model->dofs, {{line.nodes.back(), 2, force}});
+  REQUIRE(fz.ok());
+  const VectorXd uz = solver->solve(*fz);
+  Eigen::Matrix<double, 12, 1> ab;
+  for (int c = 0; c < 6; ++c) {
+    ab(c) = uz(model->dofs.dof(line.nodes[1], c));
+    ab(6 + c) = uz(model->dofs.dof(line.nodes[2], c));
+  }
+  const double eiy = 210e9 * sec.iy, x = 0.75;
+  const Eigen::Matrix<double, 6, 1> her =
+      beam_point_interpolation(mesh.node(line.nodes[1]), mesh.node(line.nodes[2]), 0.5,
+                               BoundaryInterpolation::hermite) *
+      ab;
+  CHECK(her(2) == doctest::Approx(force * x * x * (3 * len - x) / (6 * eiy)).epsilon(1e-9));
+  CHECK(her(4) == doctest::Approx(-force * x * (2 * len - x) / (2 * eiy)).epsilon(1e-9));
+}
+
+TEST_CASE("sub-model bad input names the attachment, node or point") {
+  const auto r = rhs(0.6);
+  auto empty = SubModel::build(r.mesh, {{Vector3d(0.5, 0, 0), {}}});
+  REQUIRE_FALSE(empty.ok());
+  CHECK(empty.error().message.find("attachment 0") != std::string::npos);
+  auto overlap = SubModel::build(
+      r.mesh, {{Vector3d(0.5, 0, 0), r.end_section_x0}, {Vector3d(0.8, 0, 0), r.end_section_x0}});
+  REQUIRE_FALSE(overlap.ok());
+  CHECK(overlap.error().message.find("also belongs to attachment 0") != std::string::npos);
+  auto missing = SubModel::build(r.mesh, {{Vector3d(0.5, 0, 0), {Index(1) << 40}}});
+  REQUIRE_FALSE(missing.ok());
+  CHECK(missing.error().message.find("does not exist") != std::string::npos);
+  // A brick connected to nothing the attachments hold: the solver explains the free motion.
+  fe::Mesh loose = r.mesh;
+  std::array<Index, 8> ids{};
+  const Vector3d corner(2.0, 0, 0);
+  for (int k = 0; k < 8; ++k)
+    ids[static_cast<std::size_t>(k)] =
+        loose.add_node(corner + Vector3d((k == 1 || k == 2 || k == 5 || k == 6) ? 0.01 : 0.0,
+                                         (k == 2 || k == 3 || k == 6 || k == 7) ? 0.01 : 0.0,
+                                         k >= 4 ? 0.01 : 0.0));
+  loose.add_hex8(ids, 0);
+  auto free_brick = SubModel::build(
+      loose, {{Vector3d(0.5, 0, 0), r.end_section_x0}, {Vector3d(0.8, 0, 0), r.end_section_x1}});
+  REQUIRE_FALSE(free_brick.ok());
+  CHECK(free_brick.error().code == ErrorCode::singular_matrix);
+  MESSAGE(free_brick.error().what());
+  // Read-out points off the mesh (a weld-toe line that leaves the surface) are named.
+  const SubModel s = tie(r);
+  StressOutputs out;
+  out.add_normal_stress(Vector3d(0.65, 0.2, 0.0), Vector3d::UnitX(), "off the surface");
+  auto rows = out.rows(s);
+  REQUIRE_FALSE(rows.ok());
+  CHECK(rows.error().message.find("stress read-out") != std::string::npos);
+  MESSAGE(rows.error().what());
+  // A host node without rotations cannot carry an attachment; a host node that does not exist.
+  const fe::BeamSection sec = fe::rectangular_hollow_section(0.150, 0.100, 0.004);
+  auto host = testing::make_beam_body(1.2, sec, 6, {0.0}, 4);
+  auto bad = boundary_modes(host.data, {HostPoint::at_node(999)});
+  REQUIRE_FALSE(bad.ok());
+  CHECK(bad.error().message.find("host node 999") != std::string::npos);
+  auto bad_xi = boundary_modes(host.data, {HostPoint::between(0, 1, 1.5)});
+  CHECK_FALSE(bad_xi.ok());
+}

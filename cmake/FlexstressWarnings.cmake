@@ -8,6 +8,10 @@ if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     # known false positive of its new value-range analysis. Clang and GCC 11 do not warn.
     target_compile_options(flexstress_dev_flags INTERFACE -Wno-maybe-uninitialized)
   endif()
+  # Eigen's run-time allocation guard in every project target (consistently, so no translation
+  # unit sees a different Eigen): the no-allocation tests switch it off around a step, and with
+  # assertions on (the sanitizer build) any Eigen heap allocation there aborts the test.
+  target_compile_definitions(flexstress_dev_flags INTERFACE EIGEN_RUNTIME_NO_MALLOC)
   if(FLEXSTRESS_WARNINGS_AS_ERRORS)
     target_compile_options(flexstress_dev_flags INTERFACE -Werror)
   endif()

@@ -1,5 +1,6 @@
 # Every public header compiles on its own (it includes what it uses), with warnings as errors;
-# and the library compiles without exceptions. Opt-in integrations that need exceptions are
+# and the library compiles without exceptions (one translation unit including every header:
+# the same check at a fraction of the compile time of one unit per header). Opt-in integrations that need exceptions are
 # listed in FLEXSTRESS_EXCEPTION_HEADERS and left out of the -fno-exceptions check.
 set(FLEXSTRESS_EXCEPTION_HEADERS
   flexstress/fe/eigen_solver_spectra.hpp)  # Spectra reports errors by throwing
@@ -8,14 +9,14 @@ file(GLOB_RECURSE _headers RELATIVE "${PROJECT_SOURCE_DIR}/include"
   CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/include/flexstress/*.hpp")
 set(_dir "${CMAKE_CURRENT_BINARY_DIR}/header_check")
 set(_all_sources "")
-set(_noexcept_sources "")
+set(_noexcept_includes "")
 foreach(h IN LISTS _headers)
   string(REGEX REPLACE "[/.]" "_" _name "${h}")
   set(_src "${_dir}/${_name}.cpp")
   file(CONFIGURE OUTPUT "${_src}" CONTENT "#include <${h}>\n#include <${h}>  // include guard\n")
   list(APPEND _all_sources "${_src}")
   if(NOT h IN_LIST FLEXSTRESS_EXCEPTION_HEADERS)
-    list(APPEND _noexcept_sources "${_src}")
+    string(APPEND _noexcept_includes "#include <${h}>\n")
   endif()
 endforeach()
 
@@ -27,7 +28,9 @@ if(FLEXSTRESS_HAVE_SPECTRA)
   target_include_directories(flexstress_header_check PRIVATE "${FLEXSTRESS_SPECTRA_INCLUDE_DIR}")
 endif()
 
-add_library(flexstress_header_check_noexcept OBJECT ${_noexcept_sources})
+set(_noexcept_src "${_dir}/all_headers_noexcept.cpp")
+file(CONFIGURE OUTPUT "${_noexcept_src}" CONTENT "${_noexcept_includes}")
+add_library(flexstress_header_check_noexcept OBJECT "${_noexcept_src}")
 target_link_libraries(flexstress_header_check_noexcept PRIVATE flexstress::flexstress)
 target_compile_options(flexstress_header_check_noexcept PRIVATE
   -fno-exceptions -Wall -Wextra -Wpedantic -Werror)

@@ -1,9 +1,6 @@
-// The streaming (per-sample) path allocates nothing: a counting global operator new.
-//
-// Replacing the global operator new affects the whole test executable, so the replacement is
-// kept to the minimum: it counts, then calls malloc. The other tests are not affected beyond
-// the counting. Eigen allocates through malloc, not operator new, but the streaming path creates
-// no Eigen object at run time (fixed-size arrays only), so counting operator new covers it.
+// The streaming (per-sample) path allocates nothing: a counting global operator new
+// (tests/support/counting_new.hpp). Eigen allocates through malloc, not operator new, but the
+// streaming path creates no Eigen object at run time (fixed-size arrays only).
 #include <atomic>
 #include <cstddef>
 #include <cstdlib>
@@ -21,40 +18,9 @@
 
 #include "fatigue/fatigue_test_helpers.hpp"
 
-namespace {
-std::atomic<long long> g_allocations{0};
-}  // namespace
+#include "support/counting_new.hpp"
 
-// GCC >= 11 inlines these replacements into std::allocator and then flags free() on memory from
-// operator new (-Wmismatched-new-delete), although both are ours and match. Silence that
-// false positive for this file only.
-#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 11
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  std::abort();  // the tests are built without relying on bad_alloc
-}
-void* operator new[](std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  std::abort();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-
+using flexstress::testing::g_allocations;
 using namespace flexstress;
 using namespace flexstress::fatigue;
 

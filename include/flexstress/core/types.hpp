@@ -31,4 +31,11 @@ using MatrixXd = Eigen::MatrixXd;
 /// Index type for nodes, elements and DOFs (Eigen's index type).
 using Index = Eigen::Index;
 
+/// Largest absolute entry, 0 for an empty vector (a scene without constraints has nc = 0;
+/// Eigen's maxCoeff() asserts on empty input).
+template <class Derived>
+typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& v) {
+  return v.size() == 0 ? typename Derived::Scalar(0) : v.cwiseAbs().maxCoeff();
+}
+
 }  // namespace flexstress

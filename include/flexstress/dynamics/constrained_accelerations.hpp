@@ -46,7 +46,7 @@ class ConstrainedAccelerations {
     scene.evaluate(s, w);
     matrix_.setZero();
     scene.mass_blocks(w, matrix_);
-    const Scalar alpha = set.penalty_factor * matrix_.diagonal().cwiseAbs().maxCoeff();
+    const Scalar alpha = set.penalty_factor * max_abs(matrix_.diagonal());
     matrix_.noalias() += alpha * w.jac.transpose() * w.jac;
     llt_.compute(matrix_);
     c_ = w.conv;
@@ -62,8 +62,8 @@ class ConstrainedAccelerations {
       s.v_dot = llt_.solve(rhs_);
       e_.noalias() = w.jac * s.v_dot + c_;
       s.lambda += alpha * e_;
-      residual = e_.cwiseAbs().maxCoeff();
-      if (residual <= set.tolerance * (Scalar(1) + c_.cwiseAbs().maxCoeff())) break;
+      residual = max_abs(e_);
+      if (residual <= set.tolerance * (Scalar(1) + max_abs(c_))) break;
     }
     return residual;
   }

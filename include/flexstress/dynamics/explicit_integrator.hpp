@@ -150,7 +150,7 @@ class ExplicitIntegrator {
     scene_->evaluate(s, ws_);
     matrix_.setZero();
     scene_->mass_blocks(ws_, matrix_);
-    const Scalar alpha = settings_.penalty_factor * matrix_.diagonal().cwiseAbs().maxCoeff();
+    const Scalar alpha = settings_.penalty_factor * max_abs(matrix_.diagonal());
     matrix_.noalias() += alpha * ws_.jac.transpose() * ws_.jac;
     llt_.compute(matrix_);
     for (int k = 0; k < settings_.projection_iterations; ++k) {

@@ -147,7 +147,7 @@ class ImplicitIntegrator {
     const Scalar tol = settings_.position_floor * Scalar(10);
     scene_->update_kinematics(s, ws_);
     scene_->update_constraints(s, ws_);
-    Scalar violation = ws_.phi.cwiseAbs().maxCoeff();
+    Scalar violation = max_abs(ws_.phi);
     // Damped Newton projection: (M + alpha B^T B) dx = -alpha B^T Phi, refactorized at every
     // iterate (setup only), with step halving when the violation grows. Large initial modal
     // coordinates make the joints strongly nonlinear in p (node rotations I + skew(Phi_theta p)),
@@ -172,7 +172,7 @@ class ImplicitIntegrator {
         scene_->integrate(s, dx_);
         scene_->update_kinematics(s, ws_);
         scene_->update_constraints(s, ws_);
-        const Scalar trial = ws_.phi.cwiseAbs().maxCoeff();
+        const Scalar trial = max_abs(ws_.phi);
         if (trial < violation || halving == 30) {
           violation = trial;
           break;
@@ -196,7 +196,7 @@ class ImplicitIntegrator {
       s.v_dot = llt_.solve(r_);
       e_.noalias() = ws_.jac * s.v_dot + ws_.conv;
       s.lambda += alpha_ * e_;
-      if (e_.cwiseAbs().maxCoeff() <= tol * (Scalar(1) + ws_.conv.cwiseAbs().maxCoeff())) break;
+      if (max_abs(e_) <= tol * (Scalar(1) + max_abs(ws_.conv))) break;
     }
     s.a = s.v_dot;
     has_previous_ = false;
@@ -261,7 +261,7 @@ class ImplicitIntegrator {
         continue;
       }
       dx_ = -llt_.solve(r_);
-      const Scalar size = dx_.cwiseAbs().maxCoeff();
+      const Scalar size = max_abs(dx_);
       if (!std::isfinite(size)) break;
       // A stale matrix that contracts too slowly: refactorize and redo this iteration.
       if (!fresh && it > 0 && size > settings_.refactor_rate * previous) {
@@ -269,7 +269,7 @@ class ImplicitIntegrator {
         fresh = true;
         dx_ = -llt_.solve(r_);
       }
-      previous = dx_.cwiseAbs().maxCoeff();
+      previous = max_abs(dx_);
       stale_step = !fresh;
       if (stale_step) {
         q_save_ = s.q;
@@ -281,7 +281,7 @@ class ImplicitIntegrator {
       scene_->integrate(s, dx_);
       s.v_dot.noalias() += beta_prime_ * dx_;
       s.v.noalias() += gamma_prime_ * dx_;
-      if (previous <= tol_x_ && ws_.phi.cwiseAbs().maxCoeff() <= tol_x_) {
+      if (previous <= tol_x_ && max_abs(ws_.phi) <= tol_x_) {
         converged = true;
         ++it;
         break;
@@ -319,12 +319,10 @@ class ImplicitIntegrator {
     }
     s.a = ((Scalar(1) - gen_.alpha_f) * s.v_dot + gen_.alpha_f * vd_n_ - gen_.alpha_m * a_n_) /
           (Scalar(1) - gen_.alpha_m);
-    if (ws_.phi.cwiseAbs().maxCoeff() > settings_.violation_limit)
-      return StepStatus::constraint_violation;
+    if (max_abs(ws_.phi) > settings_.violation_limit) return StepStatus::constraint_violation;
     if (settings_.project_velocities) {
       e_.noalias() = ws_.jac * s.v + ws_.phi_t;
-      if (e_.cwiseAbs().maxCoeff() >
-          settings_.violation_limit * (Scalar(1) + s.v.cwiseAbs().maxCoeff()))
+      if (max_abs(e_) > settings_.violation_limit * (Scalar(1) + max_abs(s.v)))
         return StepStatus::constraint_violation;
     }
     return StepStatus::ok;
@@ -338,7 +336,7 @@ class ImplicitIntegrator {
   void factorize(const State&) {
     iteration_.setZero();
     scene_->mass_blocks(ws_, iteration_);
-    const Scalar m_ref = iteration_.diagonal().cwiseAbs().maxCoeff();
+    const Scalar m_ref = max_abs(iteration_.diagonal());
     iteration_ *= beta_prime_;
     scene_->add_modal_stiffness_damping(iteration_, Scalar(1), gamma_prime_);
     alpha_ = settings_.penalty_factor * beta_prime_ * m_ref;
@@ -354,7 +352,7 @@ class ImplicitIntegrator {
     scene_->evaluate(s, ws_);
     iteration_.setZero();
     scene_->mass_blocks(ws_, iteration_);
-    const Scalar m_ref = iteration_.diagonal().cwiseAbs().maxCoeff();
+    const Scalar m_ref = max_abs(iteration_.diagonal());
     alpha_ = settings_.penalty_factor * m_ref;
     iteration_.noalias() += alpha_ * ws_.jac.transpose() * ws_.jac;
     llt_.compute(iteration_);
@@ -365,9 +363,7 @@ class ImplicitIntegrator {
   void project_velocities(State& s, int iterations) {
     for (int k = 0; k < iterations; ++k) {
       e_.noalias() = ws_.jac * s.v + ws_.phi_t;
-      if (e_.cwiseAbs().maxCoeff() <=
-          settings_.position_floor * (Scalar(1) + s.v.cwiseAbs().maxCoeff()))
-        break;
+      if (max_abs(e_) <= settings_.position_floor * (Scalar(1) + max_abs(s.v))) break;
       tmp_.noalias() = alpha_ * ws_.jac.transpose() * e_;
       llt_.solveInPlace(tmp_);
       s.v -= tmp_;
@@ -378,9 +374,7 @@ class ImplicitIntegrator {
   void project_accelerations(State& s, int iterations) {
     for (int k = 0; k < iterations; ++k) {
       e_.noalias() = ws_.jac * s.v_dot + ws_.conv;
-      if (e_.cwiseAbs().maxCoeff() <=
-          settings_.position_floor * (Scalar(1) + s.v_dot.cwiseAbs().maxCoeff()))
-        break;
+      if (max_abs(e_) <= settings_.position_floor * (Scalar(1) + max_abs(s.v_dot))) break;
       tmp_.noalias() = alpha_ * ws_.jac.transpose() * e_;
       llt_.solveInPlace(tmp_);
       s.v_dot -= tmp_;
@@ -390,7 +384,7 @@ class ImplicitIntegrator {
   template <class V>
   static int worst_row(const V& phi) {
     int r = 0;
-    phi.cwiseAbs().maxCoeff(&r);
+    if (phi.size() > 0) phi.cwiseAbs().maxCoeff(&r);
     return r;
   }
 

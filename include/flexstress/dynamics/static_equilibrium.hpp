@@ -62,7 +62,7 @@ Status solve_static_equilibrium(const SceneT& scene, typename SceneT::State& s,
       // own column norms matters for flexible bodies, whose joint rows carry node rotations
       // Phi_theta of order 100 per unit modal coordinate.
       const Scalar jtj = w.jac.colwise().squaredNorm().maxCoeff();
-      alpha = static_cast<Scalar>(opt.penalty_factor) * m.diagonal().cwiseAbs().maxCoeff() /
+      alpha = static_cast<Scalar>(opt.penalty_factor) * max_abs(m.diagonal()) /
               (jtj > Scalar(0) ? jtj : Scalar(1));
       m.noalias() += alpha * w.jac.transpose() * w.jac;
       llt.compute(m);
@@ -73,15 +73,20 @@ Status solve_static_equilibrium(const SceneT& scene, typename SceneT::State& s,
     if (it > 0) lambda.noalias() += alpha * w.phi;
     r.noalias() = w.jac.transpose() * (lambda + alpha * w.phi) - w.force;
     dx = -llt.solve(r);
-    last = dx.cwiseAbs().maxCoeff();
+    last = max_abs(dx);
     if (!std::isfinite(static_cast<double>(last))) break;  // never integrate NaN
     scene.integrate(s, dx);
     if (last <= static_cast<Scalar>(opt.tolerance) &&
-        w.phi.cwiseAbs().maxCoeff() <= static_cast<Scalar>(opt.tolerance)) {
+        max_abs(w.phi) <= static_cast<Scalar>(opt.tolerance)) {
       s.lambda = lambda;
       return Status::success();
     }
   }
+  if (w.phi.size() == 0)
+    return make_error(ErrorCode::not_converged, "static equilibrium did not converge in ",
+                      opt.max_iterations, " iterations (last correction ",
+                      static_cast<double>(last),
+                      "); the scene has no joints, so nothing holds its rigid motions");
   int worst = 0;
   w.phi.cwiseAbs().maxCoeff(&worst);
   return make_error(ErrorCode::not_converged, "static equilibrium did not converge in ",

@@ -1,0 +1,121 @@
+// The real-time path allocates nothing: an implicit and an explicit step of a flexible scene,
+// and the per-step stress recovery (fused rows, the influence form, a principal stress). Counted
+// by a replaced operator new; Eigen's own guard (EIGEN_RUNTIME_NO_MALLOC) aborts on any Eigen
+// heap allocation in builds with assertions (the sanitizer build in CI).
+#include <cmath>
+
+#include <doctest/doctest.h>
+
+#include <flexstress/dynamics/explicit_integrator.hpp>
+#include <flexstress/dynamics/implicit_integrator.hpp>
+#include <flexstress/fe/rhs_attachment_mesh.hpp>
+#include <flexstress/stress/fused_stress.hpp>
+#include <flexstress/stress/host_point.hpp>
+#include <flexstress/stress/stress_outputs.hpp>
+#include <flexstress/stress/sub_model.hpp>
+
+#include "dynamics/fixtures.hpp"
+#include "support/counting_new.hpp"
+
+using namespace flexstress;
+
+namespace {
+
+constexpr int N = 4;
+using Hinged = Scene<double, Bodies<FFRFBody<N>>, Joints<Revolute<ground, 0>>,
+                     Effects<Gravity, QuadraticVelocity, ModalDamping>>;
+
+// Counts operator new and forbids Eigen heap allocations while alive.
+class NoAllocationScope {
+ public:
+  NoAllocationScope() : before_(testing::allocations()) {
+    Eigen::internal::set_is_malloc_allowed(false);
+  }
+  ~NoAllocationScope() { Eigen::internal::set_is_malloc_allowed(true); }
+  long long count() const { return testing::allocations() - before_; }
+
+ private:
+  long long before_;
+};
+
+}  // namespace
+
+TEST_CASE("the counting operator new sees allocations") {
+  const long long before = testing::allocations();
+  auto* v = new std::vector<int>(10);
+  CHECK(testing::allocations() - before >= 2);
+  delete v;
+}
+
+TEST_CASE("a flexible scene's steps and the stress recovery allocate nothing") {
+  const fe::BeamSection sec = fe::rectangular_hollow_section(0.150, 0.100, 0.004);
+  auto host = testing::make_beam_body(1.2, sec, 12, {0.0}, N);
+  host.data.damping_ratios.setConstant(0.02);
+  Hinged scene;
+  auto body = FFRFBody<N>::from_modal_data(host.data);
+  REQUIRE(body.ok());
+  scene.body<0>() = *body;
+  scene.joint<0>().marker_i = fixed_marker<double>(Vector3d::Zero());
+  scene.joint<0>().marker_j =
+      make_marker(scene.body<0>(), host.interface_nodes[0], Vector3d::Zero());
+  // Sub-model at 0.5 to 0.8 m with a hot spot, a tensor and a gauge.
+  fe::RhsAttachmentSpec rs;
+  rs.density = 0.6;
+  auto detail = fe::make_rhs_attachment_mesh(rs);
+  REQUIRE(detail.ok());
+  auto sub = stress::SubModel::build(detail->mesh, {{Vector3d(0.5, 0, 0), detail->end_section_x0},
+                                                    {Vector3d(0.8, 0, 0), detail->end_section_x1}});
+  REQUIRE(sub.ok());
+  stress::StressOutputs out;
+  stress::HotSpotLocation hs;
+  hs.toe = Vector3d(detail->weld_toe_x, 0.075, 0);
+  hs.thickness = 0.004;
+  REQUIRE(out.add_hot_spot(hs).ok());
+  const Index tensor = out.add_tensor(Vector3d(0.56, 0.075, 0));
+  REQUIRE(out.add_strain_gauge(Vector3d(0.56, 0.075, 0), Vector3d::UnitX(), 0.003).ok());
+  auto rows = out.rows(*sub);
+  REQUIRE(rows.ok());
+  auto phi =
+      stress::boundary_modes(host.data, {stress::HostPoint::at_node(host.line.node_at(0.5)),
+                                         stress::HostPoint::at_node(host.line.node_at(0.8))});
+  REQUIRE(phi.ok());
+  auto fused = stress::FusedStress<N>::build(*rows, *phi);
+  REQUIRE(fused.ok());
+
+  Hinged::State s;
+  ImplicitIntegrator<Hinged> implicit(scene);
+  REQUIRE(implicit.initialize(s).ok());
+  REQUIRE(implicit.step(s) == StepStatus::ok);  // warm-up outside the scope
+  VectorXd y(fused->num_outputs()), y2(fused->num_outputs());
+  double checksum = 0;
+  long long counted = 0;
+  {
+    NoAllocationScope scope;
+    for (int i = 0; i < 200; ++i) {
+      if (implicit.step(s) != StepStatus::ok) break;
+      fused->evaluate(s.coordinates<0>().p, y);
+      fused->evaluate_by_influence(s.coordinates<0>().p, y2);
+      checksum += y(0) + y2(0) + fused->evaluate(0, s.coordinates<0>().p);
+      checksum += stress::principal_near_direction<double>(
+          fused->tensor(tensor, s.coordinates<0>().p), Vector3d::UnitX(), 1.0471975511965976);
+    }
+    counted = scope.count();
+  }
+  CHECK(counted == 0);
+  CHECK(s.t == doctest::Approx(0.201).epsilon(1e-9));  // all 200 steps ran
+  CHECK(std::isfinite(checksum));
+  // The explicit integrator (RK4) at a stable step.
+  ExplicitIntegrator<Hinged>::Settings es;
+  es.step = 0.5 / scene.max_modal_frequency();
+  ExplicitIntegrator<Hinged> rk4(scene, es);
+  Hinged::State e;
+  REQUIRE(rk4.step(e) == StepStatus::ok);
+  {
+    NoAllocationScope scope;
+    for (int i = 0; i < 200; ++i)
+      if (rk4.step(e) != StepStatus::ok) break;
+    counted = scope.count();
+  }
+  CHECK(counted == 0);
+  CHECK(e.t > 200 * es.step);
+}

@@ -102,7 +102,8 @@ struct Crane {
   std::optional<stress::SubModel> sub;
   stress::StressOutputs outputs;
   std::optional<stress::FusedStress<N>> fused;
-  Index hot_spot_row = -1, gauge_04t = -1, gauge_10t = -1, nominal_row = -1;
+  Index hot_spot_row = -1, paper_hot_spot_row = -1, gauge_04t = -1, gauge_10t = -1,
+        nominal_row = -1;
   Index toe_line_first = -1, toe_line_count = 0;
 };
 
@@ -186,6 +187,13 @@ Result<Crane<N>> make_crane(const CraneSpec& spec, const std::vector<double>& t,
   auto hot = cr.outputs.add_hot_spot(hs, "hot spot (IIW a, 0.4t/1.0t)");
   if (!hot) return hot.error();
   cr.hot_spot_row = *hot;
+  // The paper's own read-out points, 4 mm and 10 mm from the toe, extrapolated linearly.
+  stress::HotSpotLocation paper = hs;
+  paper.rule = stress::HotSpotRule::user_points;
+  paper.user_distances = {0.004, 0.010};
+  auto paper_hot = cr.outputs.add_hot_spot(paper, "hot spot (paper, 4/10 mm)");
+  if (!paper_hot) return paper_hot.error();
+  cr.paper_hot_spot_row = *paper_hot;
   auto g1 = cr.outputs.add_strain_gauge(Vector3d(toe + 0.4 * spec.wall, y_top, 0),
                                         Vector3d::UnitX(), 0.001, "gauge 0.4t");
   auto g2 = cr.outputs.add_strain_gauge(Vector3d(toe + 1.0 * spec.wall, y_top, 0),

@@ -43,11 +43,13 @@ struct CraneSpec {
   double wall = 0.004;
 };
 
-template <int N>
+/// N boom modes; StorageLimit chooses fixed-size (default) or dynamic storage (0).
+template <int N, int StorageLimit = fixed_storage_limit>
 using CraneScene = Scene<double, Bodies<FFRFBody<N>, RigidBody, RigidBody>,
                          Joints<Revolute<ground, 0>, Universal<ground, 1>, Spherical<0, 2>,
                                 Prismatic<1, 2>, PrismaticDriver<1, 2, TableLaw>>,
-                         Effects<Gravity, QuadraticVelocity, ModalDamping>>;
+                         Effects<Gravity, QuadraticVelocity, ModalDamping>, ForceElements<>,
+                         FixedGround<double>, StorageLimit>;
 
 /// The boom as a beam model with the payload as a point mass, and its reduction.
 struct Boom {
@@ -91,9 +93,9 @@ inline void synthetic_cycle(std::vector<double>& t, std::vector<double>& ds) {
   ds = {0.0, 0.0, 0.04, 0.13, 0.20, 0.20, 0.185, 0.185, 0.195, 0.195, 0.12, 0.03, 0.0, 0.0, 0.0};
 }
 
-template <int N>
+template <int N, int StorageLimit = fixed_storage_limit>
 struct Crane {
-  using SceneT = CraneScene<N>;
+  using SceneT = CraneScene<N, StorageLimit>;
   CraneSpec spec;
   Boom boom;
   SceneT scene;
@@ -109,10 +111,10 @@ struct Crane {
 
 /// Builds the crane with stroke table (t, stroke offset), puts it in static equilibrium at
 /// t = 0 and precomputes the sub-model. Fails with the first error.
-template <int N>
-Result<Crane<N>> make_crane(const CraneSpec& spec, const std::vector<double>& t,
-                            const std::vector<double>& stroke_offset) {
-  Crane<N> cr;
+template <int N, int StorageLimit = fixed_storage_limit>
+Result<Crane<N, StorageLimit>> make_crane(const CraneSpec& spec, const std::vector<double>& t,
+                                          const std::vector<double>& stroke_offset) {
+  Crane<N, StorageLimit> cr;
   cr.spec = spec;
   auto boom = make_boom(spec, N);
   if (!boom) return boom.error();

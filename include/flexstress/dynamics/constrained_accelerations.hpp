@@ -47,7 +47,7 @@ class ConstrainedAccelerations {
     matrix_.setZero();
     scene.mass_blocks(w, matrix_);
     const Scalar alpha = set.penalty_factor * max_abs(matrix_.diagonal());
-    matrix_.noalias() += alpha * w.jac.transpose() * w.jac;
+    scene.add_constraint_gram(w, alpha, matrix_);
     llt_.compute(matrix_);
     c_ = w.conv;
     if (set.baumgarte_frequency > Scalar(0)) {

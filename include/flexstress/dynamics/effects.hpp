@@ -15,7 +15,7 @@ struct QuadraticVelocity {};
 struct ModalDamping {};
 /// Spring-dampers between markers (the scene's force elements).
 struct SpringDampers {};
-/// A user callback that adds external forces (see Scene::ExternalForces).
+/// A user callback that adds external forces (Scene::external_forces).
 struct ExternalForces {};
 
 /// The list of effects a scene simulates.

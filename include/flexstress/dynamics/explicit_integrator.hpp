@@ -151,7 +151,7 @@ class ExplicitIntegrator {
     matrix_.setZero();
     scene_->mass_blocks(ws_, matrix_);
     const Scalar alpha = settings_.penalty_factor * max_abs(matrix_.diagonal());
-    matrix_.noalias() += alpha * ws_.jac.transpose() * ws_.jac;
+    scene_->add_constraint_gram(ws_, alpha, matrix_);
     llt_.compute(matrix_);
     for (int k = 0; k < settings_.projection_iterations; ++k) {
       dx_.noalias() = -alpha * ws_.jac.transpose() * ws_.phi;

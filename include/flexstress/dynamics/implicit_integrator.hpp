@@ -187,7 +187,7 @@ class ImplicitIntegrator {
     scene_->evaluate(s, ws_);
     iteration_.setZero();
     scene_->mass_blocks(ws_, iteration_);
-    iteration_.noalias() += alpha_ * ws_.jac.transpose() * ws_.jac;
+    scene_->add_constraint_gram(ws_, alpha_, iteration_);
     llt_.compute(iteration_);
     have_factorization_ = false;
     s.lambda.setZero();
@@ -340,7 +340,7 @@ class ImplicitIntegrator {
     iteration_ *= beta_prime_;
     scene_->add_modal_stiffness_damping(iteration_, Scalar(1), gamma_prime_);
     alpha_ = settings_.penalty_factor * beta_prime_ * m_ref;
-    iteration_.noalias() += alpha_ * ws_.jac.transpose() * ws_.jac;
+    scene_->add_constraint_gram(ws_, alpha_, iteration_);
     llt_.compute(iteration_);
     have_factorization_ = true;
     ++stats_.factorizations;
@@ -354,7 +354,7 @@ class ImplicitIntegrator {
     scene_->mass_blocks(ws_, iteration_);
     const Scalar m_ref = max_abs(iteration_.diagonal());
     alpha_ = settings_.penalty_factor * m_ref;
-    iteration_.noalias() += alpha_ * ws_.jac.transpose() * ws_.jac;
+    scene_->add_constraint_gram(ws_, alpha_, iteration_);
     llt_.compute(iteration_);
     have_factorization_ = false;  // the step needs its own matrix
   }

@@ -73,15 +73,26 @@ constexpr void for_each_index(F&& f, std::index_sequence<I...>) {
 
 }  // namespace detail
 
-/// Largest velocity / constraint count kept in fixed-size storage.
-inline constexpr int fixed_storage_limit = 64;
+#ifndef FLEXSTRESS_FIXED_STORAGE_LIMIT
+#define FLEXSTRESS_FIXED_STORAGE_LIMIT 64
+#endif
+/// Largest velocity / constraint count a scene keeps in fixed-size storage by default. Fixed
+/// storage saves little time per step (3 % on the crane, nv = 28; docs/performance.md) but
+/// costs compile time (every size instantiates its own Eigen kernels), so a program may lower
+/// it by defining FLEXSTRESS_FIXED_STORAGE_LIMIT, or choose per scene (StorageLimit below).
+/// The limit is part of the scene's type, so translation units that differ in it still agree
+/// on every type they share.
+inline constexpr int fixed_storage_limit = FLEXSTRESS_FIXED_STORAGE_LIMIT;
 
 template <class Scalar, class BodyList, class JointList, class EffectList = Effects<>,
-          class ForceList = ForceElements<>, class Ground = FixedGround<Scalar>>
+          class ForceList = ForceElements<>, class Ground = FixedGround<Scalar>,
+          int StorageLimit = fixed_storage_limit>
 class Scene;
 
-template <class Scalar, class... B, class... J, class... E, class... F, class Ground>
-class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F...>, Ground> {
+template <class Scalar, class... B, class... J, class... E, class... F, class Ground,
+          int StorageLimit>
+class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F...>, Ground,
+            StorageLimit> {
  public:
   using scalar_type = Scalar;
   using Effects_ = Effects<E...>;
@@ -95,7 +106,7 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   static constexpr std::array<int, num_joints> joint_nc{J::equations...};
   static constexpr std::array<int, num_joints + 1> joint_offset = detail::prefix_sums(joint_nc);
   static constexpr int nc = joint_offset[num_joints];
-  static constexpr bool fixed_storage = nv <= fixed_storage_limit && nc <= fixed_storage_limit;
+  static constexpr bool fixed_storage = nv <= StorageLimit && nc <= StorageLimit;
   static constexpr int NV = fixed_storage ? nv : Eigen::Dynamic;
   static constexpr int NC = fixed_storage ? nc : Eigen::Dynamic;
 
@@ -107,6 +118,12 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   static_assert(
       ((std::is_same_v<typename B::Kinematics, BodyKinematics<Scalar, B::num_modes>>)&&...),
       "all bodies of a scene must use the scene's Scalar type");
+
+  /// The same scene with another storage limit (0: dynamic storage, allocated once per
+  /// State, Workspace and integrator).
+  template <int Limit>
+  using with_storage_limit =
+      Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F...>, Ground, Limit>;
 
   template <int K>
   using BodyType = std::tuple_element_t<static_cast<std::size_t>(K), BodyTuple>;
@@ -214,6 +231,15 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
     }
   };
 
+  // ---- external forces (part of the model) ------------------------------------------------
+  /// External forces (Effects<ExternalForces>): called once per force evaluation, after the
+  /// built-in effects, with the time and the workspace's kinematics; adds to w.force (for
+  /// example with add_point_force). It runs inside step(), so it must not allocate or throw.
+  /// A plain function pointer and a user pointer: no type erasure that could allocate.
+  using ExternalForceFunction = void (*)(const Scene& scene, Scalar t, Workspace& w, void* user);
+  ExternalForceFunction external_forces = nullptr;
+  void* external_forces_user = nullptr;
+
   // ---- evaluation -------------------------------------------------------------------------
   /// Body kinematics (A, p, velocities) from the state, and the ground at time t.
   void update_kinematics(const State& s, Workspace& w) const {
@@ -277,7 +303,20 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
       detail::for_each_index(
           [&](auto k) { apply_force_element<static_cast<int>(decltype(k)::value)>(w); },
           std::make_index_sequence<num_forces>{});
+    if constexpr (Effects_::template has<ExternalForces>) {
+      if (external_forces != nullptr) external_forces(*this, s.t, w, external_forces_user);
+    }
     (void)s;
+  }
+
+  /// Adds the generalized force of a force f (global components) acting at the origin of
+  /// marker m on body K: Q += J_m^T f (for use in an external force callback).
+  template <int K>
+  void add_point_force(Workspace& w, const Marker<Scalar, modes_of<K>>& m,
+                       const Vec3<Scalar>& f) const {
+    static_assert(K >= 0 && K < num_bodies, "add_point_force: body index outside the scene");
+    w.force.template segment<body_nv[K]>(body_offset[K]) +=
+        m.origin.row(std::get<static_cast<std::size_t>(K)>(w.kin), f).transpose();
   }
 
   /// All of the above at the state's time.
@@ -309,6 +348,30 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
               std::get<K>(w.mass);
         },
         std::make_index_sequence<num_bodies>{});
+  }
+
+  /// m += alpha B^T B, assembled joint by joint: the rows of a joint touch only the columns of
+  /// its two bodies, so B^T B is a sum of body-pair blocks (O(nc nv_body^2) instead of the
+  /// dense O(nc nv^2), which matters for long chains: 605 x 486 for the 40-bar linkage).
+  template <class M>
+  void add_constraint_gram(const Workspace& w, Scalar alpha, M& m) const {
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr int K = static_cast<int>(decltype(k)::value);
+          using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<J...>>;
+          constexpr int bi = Kind::body_i, bj = Kind::body_j, n = joint_nc[K], r = joint_offset[K];
+          if constexpr (n > 0) {
+            if constexpr (bi >= 0)
+              add_gram_block<bi, bi>(w.jac.template middleRows<n>(r), alpha, m);
+            if constexpr (bj >= 0)
+              add_gram_block<bj, bj>(w.jac.template middleRows<n>(r), alpha, m);
+            if constexpr (bi >= 0 && bj >= 0) {
+              add_gram_block<bi, bj>(w.jac.template middleRows<n>(r), alpha, m);
+              add_gram_block<bj, bi>(w.jac.template middleRows<n>(r), alpha, m);
+            }
+          }
+        },
+        std::make_index_sequence<num_joints>{});
   }
 
   /// Adds the modal stiffness and damping (the derivatives of the elastic forces) to the
@@ -443,6 +506,14 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
       w.phi_t(i) = phi_t;
       w.conv(i) = conv;
     });
+  }
+
+  template <int BI, int BJ, class Rows, class M>
+  static void add_gram_block(const Rows& rows, Scalar alpha, M& m) {
+    constexpr int ni = body_nv[BI], nj = body_nv[BJ];
+    m.template block<ni, nj>(body_offset[BI], body_offset[BJ]).noalias() +=
+        alpha * rows.template middleCols<ni>(body_offset[BI]).transpose() *
+        rows.template middleCols<nj>(body_offset[BJ]);
   }
 
   static Vec6<Scalar> ground_velocity(const Workspace& w) {

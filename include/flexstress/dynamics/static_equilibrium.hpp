@@ -64,7 +64,7 @@ Status solve_static_equilibrium(const SceneT& scene, typename SceneT::State& s,
       const Scalar jtj = w.jac.colwise().squaredNorm().maxCoeff();
       alpha = static_cast<Scalar>(opt.penalty_factor) * max_abs(m.diagonal()) /
               (jtj > Scalar(0) ? jtj : Scalar(1));
-      m.noalias() += alpha * w.jac.transpose() * w.jac;
+      scene.add_constraint_gram(w, alpha, m);
       llt.compute(m);
       if (llt.info() != Eigen::Success)
         return make_error(ErrorCode::singular_matrix,

@@ -5,6 +5,8 @@
 //   fused_all           every output (hot spots along the toe, tensors, gauges) as F p
 //   influence_all       the paper's route: u_b = Phi_b p, then H u_b
 //   principal           a fused tensor, then the principal stress near the toe normal
+//   modal_field         the whole nodal stress field from modal stress modes, S p
+//   modal_field_max_von_mises  the largest von Mises stress over the field (a scan)
 //   full_resolve        what the influence matrix replaces: a solve with the factorization and
 //                       the stress recovery at the read-out points
 //   precompute          SubModel::build (assembly, factorization, 12 unit solves) + rows
@@ -21,6 +23,7 @@
 #include <flexstress/reduction/modal_body_data.hpp>
 #include <flexstress/stress/fused_stress.hpp>
 #include <flexstress/stress/host_point.hpp>
+#include <flexstress/stress/modal_stress_modes.hpp>
 #include <flexstress/stress/stress_outputs.hpp>
 #include <flexstress/stress/sub_model.hpp>
 
@@ -96,8 +99,12 @@ struct Recovery {
     auto f = FusedStress<kModes>::build(rows, *phi);
     if (!f) return;
     fused.emplace(std::move(*f));
+    auto m = ModalStressModes<kModes>::build(*sub, *phi);
+    if (!m) return;
+    field.emplace(std::move(*m));
   }
-  bool ok() const { return fused.has_value(); }
+  std::optional<ModalStressModes<kModes>> field;
+  bool ok() const { return fused.has_value() && field.has_value(); }
 };
 
 Recovery& recovery() {
@@ -161,6 +168,29 @@ void principal(benchmark::State& state) {
   }
 }
 
+void modal_field(benchmark::State& state) {
+  auto& r = recovery();
+  if (!r.ok()) return state.SkipWithError("setup failed");
+  const auto p = modal_state(6);
+  VectorXd y(6 * r.field->num_nodes());
+  for (auto _ : state) {
+    r.field->evaluate(p, y);
+    benchmark::DoNotOptimize(y.data());
+  }
+  state.SetLabel(std::to_string(r.field->num_nodes()) + " nodes, 6 components");
+}
+
+void modal_field_max_von_mises(benchmark::State& state) {
+  auto& r = recovery();
+  if (!r.ok()) return state.SkipWithError("setup failed");
+  const auto p = modal_state(7);
+  for (auto _ : state) {
+    Index where = -1;
+    double v = r.field->max_von_mises(p, &where);
+    benchmark::DoNotOptimize(v);
+  }
+}
+
 void full_resolve(benchmark::State& state) {
   auto& r = recovery();
   if (!r.ok()) return state.SkipWithError("setup failed");
@@ -193,6 +223,11 @@ BENCHMARK(fused_row)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(fused_all)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(influence_all)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(principal)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(modal_field)->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(modal_field_max_von_mises)
+    ->Unit(benchmark::kMicrosecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
 BENCHMARK(full_resolve)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(precompute)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3);
 

@@ -1,4 +1,5 @@
-# Install the headers and a relocatable CMake package (flexstressConfig.cmake + version file).
+# Install the headers, a relocatable CMake package (flexstressConfig.cmake + version file) and a
+# pkg-config file for build systems other than CMake.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -25,3 +26,9 @@ install(FILES
   "${PROJECT_BINARY_DIR}/flexstressConfig.cmake"
   "${PROJECT_BINARY_DIR}/flexstressConfigVersion.cmake"
   DESTINATION "${FLEXSTRESS_INSTALL_CMAKEDIR}")
+
+# pkg-config: relocatable (the prefix is found from the .pc file's own location, a pkgconf and
+# pkg-config >= 0.29 feature), so `cmake --install --prefix P` works for any P.
+configure_file("${PROJECT_SOURCE_DIR}/cmake/flexstress.pc.in" "${PROJECT_BINARY_DIR}/flexstress.pc"
+  @ONLY)
+install(FILES "${PROJECT_BINARY_DIR}/flexstress.pc" DESTINATION "${CMAKE_INSTALL_DATADIR}/pkgconfig")

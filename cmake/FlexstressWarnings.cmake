@@ -30,8 +30,16 @@ add_library(flexstress_precompute_instances OBJECT
   "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances.cpp")
 target_link_libraries(flexstress_precompute_instances PUBLIC flexstress::flexstress flexstress_dev_flags)
 
+# With PCH, the extern declarations come from a precompiled header (flexstress.hpp, then
+# precompute_instances.hpp), which must be the first thing a unit includes.
 function(flexstress_use_precompute_instances target)
+  cmake_parse_arguments(arg "PCH" "" "" ${ARGN})
   target_sources(${target} PRIVATE $<TARGET_OBJECTS:flexstress_precompute_instances>)
   target_compile_definitions(${target} PRIVATE FLEXSTRESS_EXTERN_PRECOMPUTE)
-  target_compile_options(${target} PRIVATE -include flexstress/precompute_instances.hpp)
+  if(arg_PCH)
+    target_precompile_headers(${target} PRIVATE <flexstress/flexstress.hpp>
+      <flexstress/precompute_instances.hpp> ${arg_UNPARSED_ARGUMENTS})
+  else()
+    target_compile_options(${target} PRIVATE -include flexstress/precompute_instances.hpp)
+  endif()
 endfunction()

@@ -37,6 +37,7 @@
 #include "flexstress/reduction/inertia_integrals.hpp"
 #include "flexstress/reduction/interface.hpp"
 #include "flexstress/reduction/modal_body_data.hpp"
+#include "flexstress/reduction/modal_body_io.hpp"
 #include "flexstress/reduction/orthonormalize.hpp"
 
 #include "flexstress/dynamics/body_model.hpp"
@@ -58,7 +59,9 @@
 #include "flexstress/stress/fused_stress.hpp"
 #include "flexstress/stress/host_point.hpp"
 #include "flexstress/stress/hot_spot.hpp"
+#include "flexstress/stress/modal_stress_modes.hpp"
 #include "flexstress/stress/stress_outputs.hpp"
+#include "flexstress/stress/sub_model_inertia.hpp"
 #include "flexstress/stress/sub_model.hpp"
 
 #include "flexstress/fatigue/class_grid.hpp"

@@ -93,12 +93,19 @@
   X(Result<stress::SubModel>, stress::SubModel::build,                                           \
     (fe::Mesh, const std::vector<stress::SubModelAttachment>&))                                  \
   X(Result<MatrixXd>, stress::SubModel::stress_influence, (const std::vector<Vector3d>&) const)  \
+  X(Result<MatrixXd>, stress::SubModel::stress_influence,                                        \
+    (const std::vector<Vector3d>&, const MatrixXd&) const)                                       \
   X(Result<MatrixXd>, stress::SubModel::displacement_influence,                                  \
     (const std::vector<Vector3d>&) const)                                                        \
+  X(Result<MatrixXd>, stress::SubModel::displacement_influence,                                  \
+    (const std::vector<Vector3d>&, const MatrixXd&) const)                                       \
+  X(MatrixXd, stress::SubModel::inertia_fields, () const)                                        \
   X(VectorXd, stress::SubModel::solve, (const VectorXd&) const)                                  \
   X(Result<VectorXd>, stress::SubModel::stresses_by_resolve,                                     \
     (const std::vector<Vector3d>&, const VectorXd&) const)                                       \
-  X(Result<MatrixXd>, stress::StressOutputs::rows, (const stress::SubModel&) const)
+  X(Result<MatrixXd>, stress::StressOutputs::rows, (const stress::SubModel&) const)              \
+  X(Result<MatrixXd>, stress::StressOutputs::rows,                                               \
+    (const stress::SubModel&, const MatrixXd&) const)
 
 #if defined(FLEXSTRESS_INSTANTIATE_PRECOMPUTE)
 #define FLEXSTRESS_PRECOMPUTE_INSTANCE(R, F, A) template R F<void> A;

@@ -5,9 +5,8 @@
 // The external-force callback is checked against a reference it must reproduce exactly: a
 // point force m g at the centre of mass of a rigid pendulum is the Gravity effect.
 //
-// This file is compiled with dynamic storage by default (FLEXSTRESS_FIXED_STORAGE_LIMIT=0 in
-// tests/CMakeLists.txt: each fixed size instantiates its own Eigen kernels); the storage case
-// names both limits explicitly.
+// The scenes here use dynamic storage (each fixed size instantiates its own Eigen kernels:
+// compile time); the storage case names both limits explicitly.
 #include <cmath>
 
 #include <doctest/doctest.h>
@@ -28,7 +27,8 @@ testing::BeamBody hinged_beam(int fixed_modes) {
 }
 
 template <int N, class Eff, class Forces = ForceElements<>>
-using Hinged = Scene<double, Bodies<FFRFBody<N>>, Joints<Revolute<ground, 0>>, Eff, Forces>;
+using Hinged = Scene<double, Bodies<FFRFBody<N>>, Joints<Revolute<ground, 0>>, Eff, Forces,
+                     FixedGround<double>, 0>;
 
 template <class SceneT>
 SceneT make_hinged(const testing::BeamBody& beam) {
@@ -151,10 +151,10 @@ namespace {
 
 // A rigid pendulum (1 kg, 1 m, released horizontal) with gravity as an effect, and with gravity
 // applied by the external-force callback as a point force m g at the centre of mass.
-using GravityPendulum =
-    Scene<double, Bodies<RigidBody>, Joints<Revolute<ground, 0>>, Effects<Gravity>>;
-using CallbackPendulum =
-    Scene<double, Bodies<RigidBody>, Joints<Revolute<ground, 0>>, Effects<ExternalForces>>;
+using GravityPendulum = Scene<double, Bodies<RigidBody>, Joints<Revolute<ground, 0>>,
+                              Effects<Gravity>>::with_storage_limit<0>;
+using CallbackPendulum = Scene<double, Bodies<RigidBody>, Joints<Revolute<ground, 0>>,
+                               Effects<ExternalForces>>::with_storage_limit<0>;
 
 template <class SceneT>
 SceneT make_pendulum() {

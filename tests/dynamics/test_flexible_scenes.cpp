@@ -28,8 +28,13 @@ testing::BeamBody hinged_beam(int fixed_modes) {
   return testing::make_beam_body(kLength, kSection, 24, {0.0}, fixed_modes);
 }
 
+// Dynamic storage: every fixed size would instantiate its own Eigen kernels (twice the compile
+// time of this file); test_effects.cpp shows both storages give the same motion.
+constexpr int kStorage = 0;
+
 template <int N, class Scalar = double, class Eff = Effects<Gravity, QuadraticVelocity>>
-using Hinged = Scene<Scalar, Bodies<FFRFBody<N, Scalar>>, Joints<Revolute<ground, 0>>, Eff>;
+using Hinged = typename Scene<Scalar, Bodies<FFRFBody<N, Scalar>>, Joints<Revolute<ground, 0>>,
+                              Eff>::template with_storage_limit<kStorage>;
 
 template <class SceneT>
 SceneT make_hinged(const reduction::ModalBodyData& data, Index hinge_node) {
@@ -175,7 +180,8 @@ TEST_CASE("explicit RK4 agrees with the implicit integrator on a non-stiff flexi
 TEST_CASE("static equilibrium of a clamped flexible cantilever matches the FE static solution") {
   constexpr int N = 16;
   auto beam = testing::make_beam_body(kLength, kSection, 24, {0.0}, N);
-  using Clamped = Scene<double, Bodies<FFRFBody<N>>, Joints<Fixed<ground, 0>>, Effects<Gravity>>;
+  using Clamped = Scene<double, Bodies<FFRFBody<N>>, Joints<Fixed<ground, 0>>,
+                        Effects<Gravity>>::with_storage_limit<kStorage>;
   Clamped scene;
   auto body = FFRFBody<N>::from_modal_data(beam.data);
   REQUIRE(body.ok());

@@ -1,5 +1,6 @@
 // The real-time path allocates nothing: an implicit and an explicit step of a flexible scene,
-// and the per-step stress recovery (fused rows, the influence form, a principal stress). Counted
+// and the per-step stress recovery (fused rows, the influence form, a principal stress, the
+// whole field from modal stress modes). Counted
 // by a replaced operator new; Eigen's own guard (EIGEN_RUNTIME_NO_MALLOC) aborts on any Eigen
 // heap allocation in builds with assertions (the sanitizer build in CI).
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <flexstress/fe/rhs_attachment_mesh.hpp>
 #include <flexstress/stress/fused_stress.hpp>
 #include <flexstress/stress/host_point.hpp>
+#include <flexstress/stress/modal_stress_modes.hpp>
 #include <flexstress/stress/stress_outputs.hpp>
 #include <flexstress/stress/sub_model.hpp>
 
@@ -112,6 +114,9 @@ TEST_CASE("a flexible scene's steps and the stress recovery allocate nothing") {
   REQUIRE(phi.ok());
   auto fused = stress::FusedStress<N>::build(*rows, *phi);
   REQUIRE(fused.ok());
+  auto field_modes = stress::ModalStressModes<N>::build(*sub, *phi);
+  REQUIRE(field_modes.ok());
+  VectorXd field(6 * field_modes->num_nodes());
 
   Hinged::State s;
   ImplicitIntegrator<Hinged> implicit(scene);
@@ -127,6 +132,8 @@ TEST_CASE("a flexible scene's steps and the stress recovery allocate nothing") {
       fused->evaluate(s.coordinates<0>().p, y);
       fused->evaluate_by_influence(s.coordinates<0>().p, y2);
       checksum += y(0) + y2(0) + fused->evaluate(0, s.coordinates<0>().p);
+      field_modes->evaluate(s.coordinates<0>().p, field);
+      checksum += field(0) + field_modes->max_von_mises(s.coordinates<0>().p);
       checksum += stress::principal_near_direction<double>(
           fused->tensor(tensor, s.coordinates<0>().p), Vector3d::UnitX(), 1.0471975511965976);
     }

@@ -34,7 +34,8 @@ class ConstrainedAccelerations {
 
   ConstrainedAccelerations() {
     matrix_.setZero(SceneT::nv, SceneT::nv);
-    if constexpr (!SceneT::fixed_storage) llt_ = Eigen::LLT<MatVV>(SceneT::nv);
+    // Sized (dynamic storage: the one allocation) and with a defined status before any copy.
+    llt_.compute(MatVV::Identity(SceneT::nv, SceneT::nv));
     rhs_.setZero(SceneT::nv);
     c_.setZero(SceneT::nc);
     e_.setZero(SceneT::nc);

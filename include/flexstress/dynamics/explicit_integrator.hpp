@@ -48,7 +48,8 @@ class ExplicitIntegrator {
     for (VecV* v : {&k1_, &k2_, &k3_, &k4_, &v0_, &v1_, &v2_, &v3_, &v4_, &dx_, &tmp_})
       v->setZero(nv);
     matrix_.setZero(nv, nv);
-    if constexpr (!SceneT::fixed_storage) llt_ = Eigen::LLT<MatVV>(nv);
+    // Sized (dynamic storage: the one allocation) and with a defined status before any copy.
+    llt_.compute(MatVV::Identity(nv, nv));
     e_.setZero(SceneT::nc);
   }
 

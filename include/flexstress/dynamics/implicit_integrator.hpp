@@ -116,7 +116,8 @@ class ImplicitIntegrator {
   explicit ImplicitIntegrator(const SceneT& scene, const Settings& settings = Settings())
       : scene_(&scene), settings_(settings) {
     iteration_.setZero(nv, nv);
-    if constexpr (!SceneT::fixed_storage) llt_ = Eigen::LLT<MatVV>(nv);  // allocate once
+    // Sized (dynamic storage: the one allocation) and with a defined status before any copy.
+    llt_.compute(MatVV::Identity(nv, nv));
     for (VecV* v : {&r_, &dx_, &v_n_, &vd_n_, &a_n_, &a1_, &tmp_, &vd_prev_, &v_save_, &vd_save_})
       v->setZero(nv);
     e_.setZero(nc);
@@ -260,14 +261,16 @@ class ImplicitIntegrator {
         restored = true;
         continue;
       }
-      dx_ = -llt_.solve(r_);
+      dx_ = llt_.solve(r_);  // (not -solve(): that evaluates into a heap temporary)
+      dx_ = -dx_;
       const Scalar size = max_abs(dx_);
       if (!std::isfinite(size)) break;
       // A stale matrix that contracts too slowly: refactorize and redo this iteration.
       if (!fresh && it > 0 && size > settings_.refactor_rate * previous) {
         factorize(s);
         fresh = true;
-        dx_ = -llt_.solve(r_);
+        dx_ = llt_.solve(r_);
+        dx_ = -dx_;
       }
       previous = max_abs(dx_);
       stale_step = !fresh;

@@ -94,12 +94,16 @@ class StressOutputs {
   /// R (outputs x 6 k) for `sub`. Fails, naming the point, for read-out points outside the
   /// sub-model's bricks.
   FLEXSTRESS_PRECOMPUTE
-  Result<MatrixXd> rows(const SubModel& sub) const {
-    auto hs = sub.stress_influence(stress_points_);
+  Result<MatrixXd> rows(const SubModel& sub) const { return rows(sub, sub.unit_displacements()); }
+  /// The outputs of arbitrary all-DOF displacement fields of `sub` (outputs x fields.cols()),
+  /// e.g. its inertia_fields().
+  FLEXSTRESS_PRECOMPUTE
+  Result<MatrixXd> rows(const SubModel& sub, const MatrixXd& fields) const {
+    auto hs = sub.stress_influence(stress_points_, fields);
     if (!hs) return make_error(hs.error().code, "stress read-out: ", hs.error().message);
-    auto hu = sub.displacement_influence(displacement_points_);
+    auto hu = sub.displacement_influence(displacement_points_, fields);
     if (!hu) return make_error(hu.error().code, "strain gauge end: ", hu.error().message);
-    MatrixXd r = MatrixXd::Zero(num_outputs(), sub.num_boundary_dofs());
+    MatrixXd r = MatrixXd::Zero(num_outputs(), fields.cols());
     for (Index i = 0; i < num_outputs(); ++i)
       for (const Term& t : rows_[static_cast<std::size_t>(i)]) {
         if (t.stress_point >= 0)

@@ -116,16 +116,28 @@ class SubModel {
   /// for a point outside the brick mesh.
   FLEXSTRESS_PRECOMPUTE
   Result<MatrixXd> stress_influence(const std::vector<Vector3d>& points) const {
+    return stress_influence(points, unit_);
+  }
+  /// The same for any all-DOF displacement fields (columns), e.g. inertia_fields().
+  FLEXSTRESS_PRECOMPUTE
+  Result<MatrixXd> stress_influence(const std::vector<Vector3d>& points,
+                                    const MatrixXd& fields) const {
     auto s = fe::point_stress_operator(*mesh_, model_->dofs, *locator_, points);
     if (!s) return s.error();
-    return MatrixXd(*s * unit_);
+    return MatrixXd(*s * fields);
   }
 
   /// (3 P x 6 k): displacements at the points per unit boundary DOF (trilinear interpolation
   /// in the containing brick).
   FLEXSTRESS_PRECOMPUTE
   Result<MatrixXd> displacement_influence(const std::vector<Vector3d>& points) const {
-    MatrixXd out = MatrixXd::Zero(3 * static_cast<Index>(points.size()), num_boundary_dofs());
+    return displacement_influence(points, unit_);
+  }
+  /// The same for any all-DOF displacement fields (columns).
+  FLEXSTRESS_PRECOMPUTE
+  Result<MatrixXd> displacement_influence(const std::vector<Vector3d>& points,
+                                          const MatrixXd& fields) const {
+    MatrixXd out = MatrixXd::Zero(3 * static_cast<Index>(points.size()), fields.cols());
     for (std::size_t i = 0; i < points.size(); ++i) {
       auto bp = locator_->locate(points[i]);
       if (!bp) return bp.error();
@@ -134,9 +146,57 @@ class SubModel {
       for (int k = 0; k < 8; ++k)
         for (int c = 0; c < 3; ++c)
           out.row(3 * static_cast<Index>(i) + c) +=
-              n(k) * unit_.row(model_->dofs.dof(h.nodes[static_cast<std::size_t>(k)], c));
+              n(k) * fields.row(model_->dofs.dof(h.nodes[static_cast<std::size_t>(k)], c));
     }
     return out;
+  }
+
+  /// Quasi-static response to the sub-model's own inertia with the boundary held: all-DOF
+  /// displacements for the body force -rho a(x), a(x) the acceleration of the material point at
+  /// x (host frame), i.e. the load -M a with a sampled at the nodes (exact for the linear fields
+  /// of rigid-body motion, which brick interpolation reproduces). The rigid webs are massless.
+  template <class AccelerationField>
+  VectorXd inertia_response(const AccelerationField& acceleration_at) const {
+    const fe::DofMap& dofs = model_->dofs;
+    VectorXd a = VectorXd::Zero(dofs.size());
+    for (Index n = 0; n < mesh_->num_nodes(); ++n) {
+      if (dofs.num_node_dofs(n) == 0) continue;
+      const Vector3d an = acceleration_at(mesh_->node(n));
+      for (int c = 0; c < 3; ++c) a(dofs.dof(n, c)) = an(c);
+    }
+    const VectorXd load = -(model_->mass_all * a);
+    return solver_->solve(load, VectorXd::Zero(num_boundary_dofs()));
+  }
+
+  /// The responses to the 12 unit inertia coordinates of a rigid host-frame motion (dofs x 12):
+  /// a(x) = a_O + alpha x x + omega x (omega x x) is linear in
+  /// g = [a_O (3); alpha (3); wx^2, wy^2, wz^2, wx wy, wy wz, wz wx] (see sub_model_inertia.hpp).
+  FLEXSTRESS_PRECOMPUTE
+  MatrixXd inertia_fields() const {
+    MatrixXd out(model_->dofs.size(), 12);
+    for (int k = 0; k < 12; ++k)
+      out.col(k) = inertia_response([k](const Vector3d& x) { return unit_inertia_field(k, x); });
+    return out;
+  }
+
+  /// Acceleration at x for unit inertia coordinate k (0-2 translation, 3-5 angular
+  /// acceleration, 6-11 the products of angular velocity components; omega x (omega x x) =
+  /// (omega omega^T - |omega|^2 I) x).
+  static Vector3d unit_inertia_field(int k, const Vector3d& x) {
+    switch (k) {
+      case 0:
+      case 1:
+      case 2: return Vector3d::Unit(k);
+      case 3:
+      case 4:
+      case 5: return Vector3d::Unit(k - 3).cross(x);
+      case 6: return Vector3d(0, -x.y(), -x.z());  // wx^2
+      case 7: return Vector3d(-x.x(), 0, -x.z());  // wy^2
+      case 8: return Vector3d(-x.x(), -x.y(), 0);  // wz^2
+      case 9: return Vector3d(x.y(), x.x(), 0);    // wx wy
+      case 10: return Vector3d(0, x.z(), x.y());   // wy wz
+      default: return Vector3d(x.z(), 0, x.x());   // wz wx
+    }
   }
 
   /// The reference path: all-DOF displacements for boundary values u_b by a fresh solve with

@@ -61,8 +61,8 @@
 #include "flexstress/stress/hot_spot.hpp"
 #include "flexstress/stress/modal_stress_modes.hpp"
 #include "flexstress/stress/stress_outputs.hpp"
-#include "flexstress/stress/sub_model_inertia.hpp"
 #include "flexstress/stress/sub_model.hpp"
+#include "flexstress/stress/sub_model_inertia.hpp"
 
 #include "flexstress/fatigue/class_grid.hpp"
 #include "flexstress/fatigue/cycle.hpp"

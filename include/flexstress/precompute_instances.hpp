@@ -104,8 +104,7 @@
   X(Result<VectorXd>, stress::SubModel::stresses_by_resolve,                                     \
     (const std::vector<Vector3d>&, const VectorXd&) const)                                       \
   X(Result<MatrixXd>, stress::StressOutputs::rows, (const stress::SubModel&) const)              \
-  X(Result<MatrixXd>, stress::StressOutputs::rows,                                               \
-    (const stress::SubModel&, const MatrixXd&) const)
+  X(Result<MatrixXd>, stress::StressOutputs::rows, (const stress::SubModel&, const MatrixXd&) const)
 
 #if defined(FLEXSTRESS_INSTANTIATE_PRECOMPUTE)
 #define FLEXSTRESS_PRECOMPUTE_INSTANCE(R, F, A) template R F<void> A;

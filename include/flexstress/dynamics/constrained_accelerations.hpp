@@ -52,16 +52,19 @@ class ConstrainedAccelerations {
     llt_.compute(matrix_);
     c_ = w.conv;
     if (set.baumgarte_frequency > Scalar(0)) {
-      e_.noalias() = w.jac * s.v + w.phi_t;
+      e_.noalias() = w.jac * s.v;  // product alone: no temporary
+      e_ += w.phi_t;
       c_ += Scalar(2) * set.baumgarte_damping * set.baumgarte_frequency * e_ +
             set.baumgarte_frequency * set.baumgarte_frequency * w.phi;
     }
     Scalar residual = Scalar(0);
     for (int it = 0; it < set.iterations; ++it) {
       e_ = s.lambda + alpha * c_;
-      rhs_.noalias() = w.force - w.jac.transpose() * e_;
+      rhs_ = w.force;
+      rhs_.noalias() -= w.jac.transpose() * e_;
       s.v_dot = llt_.solve(rhs_);
-      e_.noalias() = w.jac * s.v_dot + c_;
+      e_.noalias() = w.jac * s.v_dot;  // product alone: no temporary
+      e_ += c_;
       s.lambda += alpha * e_;
       residual = max_abs(e_);
       if (residual <= set.tolerance * (Scalar(1) + max_abs(c_))) break;

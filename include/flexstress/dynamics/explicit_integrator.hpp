@@ -162,7 +162,8 @@ class ExplicitIntegrator {
       scene_->update_constraints(s, ws_);
     }
     for (int k = 0; k < settings_.projection_iterations; ++k) {
-      e_.noalias() = ws_.jac * s.v + ws_.phi_t;
+      e_.noalias() = ws_.jac * s.v;  // product alone: no temporary
+      e_ += ws_.phi_t;
       tmp_.noalias() = alpha * ws_.jac.transpose() * e_;
       llt_.solveInPlace(tmp_);
       s.v -= tmp_;

@@ -195,7 +195,8 @@ class ImplicitIntegrator {
     for (int it = 0; it < max_iterations; ++it) {
       r_ = ws_.force - ws_.jac.transpose() * (s.lambda + alpha_ * ws_.conv);
       s.v_dot = llt_.solve(r_);
-      e_.noalias() = ws_.jac * s.v_dot + ws_.conv;
+      e_.noalias() = ws_.jac * s.v_dot;  // product alone: no temporary
+      e_ += ws_.conv;
       s.lambda += alpha_ * e_;
       if (max_abs(e_) <= tol * (Scalar(1) + max_abs(ws_.conv))) break;
     }
@@ -324,7 +325,8 @@ class ImplicitIntegrator {
           (Scalar(1) - gen_.alpha_m);
     if (max_abs(ws_.phi) > settings_.violation_limit) return StepStatus::constraint_violation;
     if (settings_.project_velocities) {
-      e_.noalias() = ws_.jac * s.v + ws_.phi_t;
+      e_.noalias() = ws_.jac * s.v;  // product alone: no temporary
+      e_ += ws_.phi_t;
       if (max_abs(e_) > settings_.violation_limit * (Scalar(1) + max_abs(s.v)))
         return StepStatus::constraint_violation;
     }
@@ -365,7 +367,8 @@ class ImplicitIntegrator {
   /// v <- v - S^-1 alpha B^T (B v + Phi_t), repeated (ws_ holds B and Phi_t at s).
   void project_velocities(State& s, int iterations) {
     for (int k = 0; k < iterations; ++k) {
-      e_.noalias() = ws_.jac * s.v + ws_.phi_t;
+      e_.noalias() = ws_.jac * s.v;  // product alone: no temporary
+      e_ += ws_.phi_t;
       if (max_abs(e_) <= settings_.position_floor * (Scalar(1) + max_abs(s.v))) break;
       tmp_.noalias() = alpha_ * ws_.jac.transpose() * e_;
       llt_.solveInPlace(tmp_);
@@ -376,7 +379,8 @@ class ImplicitIntegrator {
   /// v_dot <- v_dot - S^-1 alpha B^T (B v_dot + conv), repeated (ws_ up to date at s).
   void project_accelerations(State& s, int iterations) {
     for (int k = 0; k < iterations; ++k) {
-      e_.noalias() = ws_.jac * s.v_dot + ws_.conv;
+      e_.noalias() = ws_.jac * s.v_dot;  // product alone: no temporary
+      e_ += ws_.conv;
       if (max_abs(e_) <= settings_.position_floor * (Scalar(1) + max_abs(s.v_dot))) break;
       tmp_.noalias() = alpha_ * ws_.jac.transpose() * e_;
       llt_.solveInPlace(tmp_);

@@ -19,6 +19,9 @@ if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_compile_options(flexstress_dev_flags INTERFACE
       -fsanitize=${FLEXSTRESS_SANITIZE} -fno-omit-frame-pointer -fno-sanitize-recover=all)
     target_link_options(flexstress_dev_flags INTERFACE -fsanitize=${FLEXSTRESS_SANITIZE})
+    if(FLEXSTRESS_NO_SANITIZE)
+      target_compile_options(flexstress_dev_flags INTERFACE -fno-sanitize=${FLEXSTRESS_NO_SANITIZE})
+    endif()
   endif()
 endif()
 

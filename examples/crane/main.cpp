@@ -231,13 +231,8 @@ int main(int argc, char** argv) {
   }
   VectorXd y_inertia = VectorXd::Zero(cr.fused->num_outputs());
   auto add_inertia = [&](const Scene::State& st, VectorXd& out) {
-    const Matrix3d a = rotation_matrix(st.template coordinates<0>().theta);
-    const auto coords = stress::inertia_coordinates<double>(
-        Vector3d(a.transpose() * st.v_dot.template head<3>()),
-        Vector3d(a.transpose() * scene.gravity), Vector3d(st.v.template segment<3>(3)),
-        Vector3d(st.v_dot.template segment<3>(3)));
     y_inertia.setZero();
-    inertia->add_to(coords, y_inertia);
+    inertia->add_to(crane::boom_inertia_coordinates(scene, st), y_inertia);
     out += y_inertia;
   };
   double inertia_hot_max = 0;
@@ -317,10 +312,7 @@ int main(int argc, char** argv) {
   if (progress) std::fprintf(stderr, "\r%40s\r", "");
   csv.close();
   // The sub-model at the peak, for ParaView (and docs/crane.md's picture).
-  const MatrixXd phi = *stress::boundary_modes(
-      cr.boom.data,
-      {stress::HostPoint::at_node(cr.boom.node_x0), stress::HostPoint::at_node(cr.boom.node_x1)});
-  const VectorXd u_peak = cr.sub->solve(phi.leftCols(kModes) * p_peak);
+  const VectorXd u_peak = cr.sub->solve(cr.boundary_modes.leftCols(kModes) * p_peak);
   auto fields = fe::standard_fields(cr.sub->mesh(), cr.sub->model().dofs, u_peak);
   if (fields) (void)fe::write_vtu(output + "/detail_d_peak.vtu", cr.sub->mesh(), *fields);
   write_plot(output);

@@ -65,3 +65,53 @@ TEST_CASE("A01 pendulum: period 2.367842 s and energy over 2000 s") {
   CHECK(period == doctest::Approx(2.367842).epsilon(1e-4));
   CHECK(max_drift < 1e-3 * 9.81);
 }
+
+TEST_CASE("a Newton budget keeps the step's last iterate instead of failing") {
+  // Real-time use: at most max_iterations corrections per step. Without the budget flag a step
+  // that needs more is undone and reported; with it the step is kept and counted, and with a
+  // sufficient budget the motion stays close to the converged one (the pendulum's swing, 1 s
+  // from horizontal). A budget too small to converge may diverge: then a step reports it and
+  // the state stays finite (it must never abort or leave NaN behind).
+  const Pendulum scene = make_pendulum();
+  auto run = [&](int max_iterations, bool budget, long* over_budget, StepStatus* failure) {
+    ImplicitIntegrator<Pendulum>::Settings settings;
+    settings.step = 1e-3;
+    settings.max_iterations = max_iterations;
+    settings.accept_at_iteration_limit = budget;
+    ImplicitIntegrator<Pendulum> integrator(scene, settings);
+    Pendulum::State s;
+    s.coordinates<0>().position = Vector3d(1, 0, 0);
+    REQUIRE(integrator.initialize(s).ok());
+    for (int i = 0; i < 1000; ++i) {
+      const double t_before = s.t;
+      const StepStatus st = integrator.step(s);
+      if (st != StepStatus::ok && st != StepStatus::constraint_violation) {
+        if (failure) *failure = st;
+        CHECK(s.t == t_before);  // the failed step was undone
+        break;
+      }
+    }
+    if (over_budget) *over_budget = integrator.statistics().over_budget;
+    return s;
+  };
+  const auto converged = run(30, false, nullptr, nullptr);
+  REQUIRE(converged.t == doctest::Approx(1.0));
+  StepStatus failure = StepStatus::ok;
+  const auto refused = run(1, false, nullptr, &failure);
+  CHECK(refused.t < 0.5);
+  CHECK(failure == StepStatus::newton_not_converged);
+  long over = 0;
+  const auto kept = run(3, true, &over, nullptr);
+  CHECK(kept.t == doctest::Approx(1.0));
+  CHECK(over > 0);
+  const double dx = (kept.coordinates<0>().position - converged.coordinates<0>().position).norm();
+  MESSAGE("3-iteration budget: " << over << " steps at the limit, position off by " << dx
+                                 << " m after 1 s");
+  CHECK(dx < 0.01);  // 1 % of the link length
+  for (int budget : {1, 2}) {
+    const auto s = run(budget, true, nullptr, nullptr);
+    CHECK(s.coordinates<0>().position.allFinite());
+    CHECK(s.coordinates<0>().theta.allFinite());
+    CHECK(s.v.allFinite());
+  }
+}

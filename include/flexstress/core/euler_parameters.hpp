@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products
@@ -100,11 +101,13 @@ EulerParameters<Scalar> conjugate(const EulerParameters<Scalar>& t) {
   return EulerParameters<Scalar>(t(0), -t(1), -t(2), -t(3));
 }
 
-/// theta / |theta|. Precondition: theta != 0 (asserted).
+/// theta / |theta|. A zero or non-finite theta (a diverging time step, not a programming error)
+/// gives NaN, which the integrators report as a failed step instead of aborting.
 template <class Scalar>
 EulerParameters<Scalar> normalized(const EulerParameters<Scalar>& t) {
   const Scalar n = t.norm();
-  FLEXSTRESS_ASSERT(n > Scalar(0), "normalized: zero Euler parameter vector");
+  if (!(n > Scalar(0)) || !std::isfinite(n))
+    return EulerParameters<Scalar>::Constant(std::numeric_limits<Scalar>::quiet_NaN());
   return t / n;
 }
 

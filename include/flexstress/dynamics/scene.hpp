@@ -410,6 +410,20 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
         std::make_index_sequence<num_bodies>{});
   }
 
+  /// True if every coordinate of s is finite (the integrators' check before keeping a step).
+  bool coordinates_finite(const State& s) const {
+    bool finite = true;
+    detail::for_each_index(
+        [&](auto k) {
+          const auto& q = std::get<static_cast<int>(decltype(k)::value)>(s.q);
+          finite = finite && q.position.allFinite() && q.theta.allFinite();
+          if constexpr (has_modes<static_cast<int>(decltype(k)::value)>)
+            finite = finite && q.p.allFinite();
+        },
+        std::make_index_sequence<num_bodies>{});
+    return finite;
+  }
+
   /// Largest modal angular frequency of the scene's flexible bodies.
   Scalar max_modal_frequency() const {
     Scalar m = Scalar(0);

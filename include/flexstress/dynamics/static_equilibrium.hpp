@@ -10,7 +10,9 @@
 // free mechanism has no static equilibrium to find.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -22,7 +24,9 @@ namespace flexstress {
 
 struct StaticEquilibriumOptions {
   int max_iterations = 200;
-  double tolerance = 1e-10;        ///< on the correction (m, rad, modal units)
+  /// On the correction (m, rad, modal units) and the constraint violation; 0: 1e-10, or 100
+  /// epsilon if the scene's Scalar cannot resolve that (float: 1.2e-5).
+  double tolerance = 0.0;
   double regularization_hz = 1.0;  ///< f in c = (2 pi f)^2
   /// alpha B^T B relative to the largest diagonal of K + c M. The multiplier update removes
   /// the penalty's bias, so a moderate factor converges in a few iterations; 1e6 made the
@@ -49,6 +53,10 @@ Status solve_static_equilibrium(const SceneT& scene, typename SceneT::State& s,
   s.a.setZero();
   const Scalar c =
       static_cast<Scalar>(std::pow(2.0 * 3.14159265358979323846 * opt.regularization_hz, 2));
+  const Scalar tolerance = static_cast<Scalar>(
+      opt.tolerance > 0.0
+          ? opt.tolerance
+          : std::max(1e-10, 100.0 * double(std::numeric_limits<Scalar>::epsilon())));
   Eigen::LLT<typename SceneT::MatVV> llt;
   Scalar alpha = Scalar(0), last = Scalar(0);
   for (int it = 0; it < opt.max_iterations; ++it) {
@@ -76,8 +84,7 @@ Status solve_static_equilibrium(const SceneT& scene, typename SceneT::State& s,
     last = max_abs(dx);
     if (!std::isfinite(static_cast<double>(last))) break;  // never integrate NaN
     scene.integrate(s, dx);
-    if (last <= static_cast<Scalar>(opt.tolerance) &&
-        max_abs(w.phi) <= static_cast<Scalar>(opt.tolerance)) {
+    if (last <= tolerance && max_abs(w.phi) <= tolerance) {
       s.lambda = lambda;
       return Status::success();
     }

@@ -1,0 +1,108 @@
+// The crane's parameters and its boom: the beam model with the payload, its Craig-Bampton
+// reduction, where the sub-model's ends read it, and the synthetic work cycle. Kept apart from
+// crane_model.hpp (the scene and the sub-model) so that code that needs only the boom, like its
+// frequency test, does not compile the dynamics.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <flexstress/core/status.hpp>
+#include <flexstress/core/types.hpp>
+#include <flexstress/fe/beam_line.hpp>
+#include <flexstress/fe/beam_section.hpp>
+#include <flexstress/fe/material.hpp>
+#include <flexstress/fe/mesh.hpp>
+#include <flexstress/reduction/modal_body_data.hpp>
+#include <flexstress/stress/host_point.hpp>
+
+namespace crane {
+
+using namespace flexstress;
+
+/// Parameters of the crane (SI units). Defaults: the paper's Tables 1 and 2 and DESIGN choices.
+struct CraneSpec {
+  double boom_length = 4.5;
+  int boom_elements = 19;  ///< 20 nodes, plus nodes at B, the sub-model ends and the payload
+  double payload_mass = 100.0;
+  double payload_x = 2.5;
+  double cylinder_mass = 20.0, rod_mass = 10.0;
+  double cylinder_length = 0.6, rod_length = 0.6;  ///< slender bodies along their axis
+  Vector3d a{0, 0, 0}, b{0.32, -0.125, 0}, c{0, -0.925, 0};
+  double b_node_x = 0.32;  ///< B hangs 0.125 m below this boom node (rigid offset)
+  double damping_ratio = 0.02;
+  int fixed_interface_modes = 4;  ///< 6 static + 4 = 10 deformation modes
+  double submodel_density = 1.0;  ///< 1792 bricks
+  double submodel_x0 = 0.5, submodel_x1 = 0.8;
+  double wall = 0.004;
+  fe::Hex8Formulation formulation = fe::Hex8Formulation::incompatible_modes;
+  /// false: the boom has nodes at the sub-model's ends (the paper). true: it does not, and the
+  /// ends are read between nodes with `interpolation` (linear as in the paper, or Hermite).
+  bool attach_between_nodes = false;
+  stress::BoundaryInterpolation interpolation = stress::BoundaryInterpolation::linear;
+};
+
+/// The boom as a beam model with the payload as a point mass, and its reduction.
+struct Boom {
+  fe::Mesh mesh;
+  fe::BeamLine line;
+  reduction::ModalBodyData data;
+  Index node_a = -1, node_b = -1, node_x0 = -1, node_x1 = -1;
+};
+
+inline Result<Boom> make_boom(const CraneSpec& spec, int modes) {
+  Boom boom;
+  fe::BeamLineSpec line;
+  line.end = Vector3d(spec.boom_length, 0, 0);
+  line.num_elements = spec.boom_elements;
+  line.extra_positions = {spec.b_node_x, spec.payload_x};
+  if (!spec.attach_between_nodes) {
+    line.extra_positions.push_back(spec.submodel_x0);
+    line.extra_positions.push_back(spec.submodel_x1);
+  }
+  line.material = boom.mesh.add_material(fe::steel());
+  line.section = boom.mesh.add_section(fe::rectangular_hollow_section(0.150, 0.100, spec.wall));
+  line.orientation = Vector3d::UnitY();  // section height along y: vertical bending is strong
+  boom.line = fe::add_beam_line(boom.mesh, line);
+  boom.node_a = boom.line.node_at(0.0);
+  boom.node_b = boom.line.node_at(spec.b_node_x);
+  if (!spec.attach_between_nodes) {
+    boom.node_x0 = boom.line.node_at(spec.submodel_x0);
+    boom.node_x1 = boom.line.node_at(spec.submodel_x1);
+  }
+  if (spec.payload_mass > 0)
+    boom.mesh.add_point_mass(boom.line.node_at(spec.payload_x), spec.payload_mass);
+  reduction::ReductionSpec rs;
+  rs.interface = {{boom.node_a}, {boom.node_b}};
+  // 6 static modes plus fixed-interface modes, enough for `modes`.
+  rs.dynamic_modes.count = std::max(spec.fixed_interface_modes, modes - 6);
+  rs.keep_modes = modes;
+  rs.damping_ratio = spec.damping_ratio;
+  auto data = reduction::reduce(boom.mesh, rs);
+  if (!data) return data.error();
+  boom.data = std::move(*data);
+  return boom;
+}
+
+/// Where the sub-model end at x reads the boom: its node, or between the two nodes around x.
+inline stress::HostPoint host_point(const Boom& boom, double x,
+                                    stress::BoundaryInterpolation kind) {
+  const auto& pos = boom.line.positions;
+  for (std::size_t i = 0; i + 1 < pos.size(); ++i) {
+    if (std::abs(pos[i] - x) < 1e-12) return stress::HostPoint::at_node(boom.line.nodes[i]);
+    if (pos[i] < x && x < pos[i + 1])
+      return stress::HostPoint::between(boom.line.nodes[i], boom.line.nodes[i + 1],
+                                        (x - pos[i]) / (pos[i + 1] - pos[i]), kind);
+  }
+  return stress::HostPoint::at_node(boom.line.node_at(x));
+}
+
+/// The synthetic work cycle (documented in docs/crane.md): stroke offsets from the initial
+/// cylinder length at times t. Lift 0.20 m, hold with two operator corrections, lower.
+inline void synthetic_cycle(std::vector<double>& t, std::vector<double>& ds) {
+  t = {0.0, 0.5, 1.5, 2.5, 3.5, 4.0, 4.6, 5.2, 5.8, 6.5, 7.5, 8.5, 9.5, 10.0, 11.0};
+  ds = {0.0, 0.0, 0.04, 0.13, 0.20, 0.20, 0.185, 0.185, 0.195, 0.195, 0.12, 0.03, 0.0, 0.0, 0.0};
+}
+
+}  // namespace crane

@@ -47,10 +47,11 @@ TEST_CASE_TEMPLATE("EN 1993-1-9 direct-stress curves at 2e6, N_D and N_L", T, fl
     // Slopes: m = 3 above N_D, m = 5 between N_D and N_L.
     check_rel(curve->cycles_to_failure(T(2) * c), T(2e6) / T(8));
     check_rel(curve->cycles_to_failure(T(0.9) * d), T(5e6) * std::pow(T(1) / T(0.9), T(5)));
-    // Below the cut-off no damage; at it, 1 / N_L.
+    // Below the cut-off no damage; at it, 1 / N_L. (At the curve's own cut-off: l computed
+    // here may round to one ulp either side of it, depending on the compiler's pow.)
     CHECK(curve->damage_per_cycle(T(0.999) * l) == T(0));
     CHECK(std::isinf(curve->cycles_to_failure(T(0.999) * l)));
-    check_rel(curve->damage_per_cycle(l), T(1e-8));
+    check_rel(curve->damage_per_cycle(curve->cutoff_range()), T(1e-8));
     CHECK(curve->slope_at(T(1e6)) == T(3));
     CHECK(curve->slope_at(T(1e7)) == T(5));
     CHECK(std::isinf(curve->slope_at(T(2e8))));

@@ -15,8 +15,6 @@ using namespace flexstress::fe;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The crane boom's section and steel (paper, Table 2).
 struct BeamFixture {
   Mesh mesh;

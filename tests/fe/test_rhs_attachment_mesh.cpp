@@ -74,8 +74,9 @@ TEST_CASE("RHS attachment mesh: brick counts at three densities (about 500, 1800
 }
 
 TEST_CASE("RHS attachment mesh: positive Jacobians, exact volume and surface, conforming") {
-  for (const auto& [density, width] :
+  for (const auto& [d, w] :
        {std::pair<double, double>{0.6, 0.1}, {1.0, 0.1}, {1.6, 0.1}, {1.0, 0.06}}) {
+    const double density = d, width = w;  // (C++17 lambdas cannot capture bindings)
     CAPTURE(density);
     CAPTURE(width);
     const RhsAttachmentMesh r = make(density, 0.5, 0.8, width);

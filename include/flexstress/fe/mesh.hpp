@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
 
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"

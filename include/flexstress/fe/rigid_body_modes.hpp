@@ -6,6 +6,7 @@
 #include <string>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "flexstress/core/precompute.hpp"
 #include "flexstress/core/types.hpp"

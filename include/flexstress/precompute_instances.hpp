@@ -15,12 +15,14 @@
 #include "flexstress/fe/assembly.hpp"
 #include "flexstress/fe/brick_locator.hpp"
 #include "flexstress/fe/eigen_solver.hpp"
+#include "flexstress/fe/geometric_stiffness.hpp"
 #include "flexstress/fe/hex8.hpp"
 #include "flexstress/fe/rhs_attachment_mesh.hpp"
 #include "flexstress/fe/static_solver.hpp"
 #include "flexstress/fe/stress_recovery.hpp"
 #include "flexstress/fe/vtk_writer.hpp"
 #include "flexstress/reduction/modal_body_data.hpp"
+#include "flexstress/reduction/modal_geometric_stiffness.hpp"
 #include "flexstress/stress/host_point.hpp"
 #include "flexstress/stress/stress_outputs.hpp"
 #include "flexstress/stress/sub_model.hpp"
@@ -88,6 +90,10 @@
     (const fe::Mesh&, const reduction::ComponentModes&, const reduction::ReductionSpec&))        \
   X(Result<reduction::ModalBodyData>, reduction::reduce,                                         \
     (const fe::Mesh&, const reduction::ReductionSpec&))                                          \
+  X(Result<fe::SparseMatrixd>, fe::assemble_geometric_stiffness,                                 \
+    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                       \
+  X(Result<reduction::ModalGeometricStiffness>, reduction::modal_geometric_stiffness,            \
+    (const fe::Mesh&, const reduction::ModalBodyData&, const fe::BoundaryConditions&))           \
   X(Result<MatrixXd>, stress::boundary_modes,                                                    \
     (const reduction::ModalBodyData&, const std::vector<stress::HostPoint>&))                    \
   X(Result<stress::SubModel>, stress::SubModel::build,                                           \

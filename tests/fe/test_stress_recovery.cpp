@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 
 #include <flexstress/fe/assembly.hpp>
+#include <flexstress/fe/box_mesh.hpp>
 #include <flexstress/fe/brick_locator.hpp>
 #include <flexstress/fe/static_solver.hpp>
 #include <flexstress/fe/stress_measures.hpp>
@@ -70,20 +71,12 @@ Vector6d patch_stress() {
 // (i, j, k) has id i + (nx + 1) (j + (ny + 1) k).
 Mesh block(double lx, double hy, double hz, int nx, int ny, int nz, const Material& m) {
   Mesh mesh;
-  const Index mat = mesh.add_material(m);
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i)
-        mesh.add_node(
-            Vector3d(lx * i / nx, hy * (double(j) / ny - 0.5), hz * (double(k) / nz - 0.5)));
-  auto id = [&](int i, int j, int k) { return Index(i + (nx + 1) * (j + (ny + 1) * k)); };
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        mesh.add_hex8(
-            {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
-             id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)},
-            mat);
+  BoxMeshSpec spec;
+  spec.origin = Vector3d(0, -hy / 2, -hz / 2);
+  spec.size = Vector3d(lx, hy, hz);
+  spec.divisions = {nx, ny, nz};
+  spec.material = mesh.add_material(m);
+  REQUIRE(add_box_mesh(mesh, spec).ok());
   return mesh;
 }
 

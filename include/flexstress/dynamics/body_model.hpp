@@ -29,6 +29,7 @@
 #include "flexstress/core/types.hpp"
 #include "flexstress/dynamics/body_vector.hpp"
 #include "flexstress/reduction/modal_body_data.hpp"
+#include "flexstress/reduction/modal_geometric_stiffness_data.hpp"
 
 namespace flexstress {
 
@@ -138,6 +139,44 @@ class BodyModel {
   Mat<Scalar, 3, NModes> phi_r(Index node) const { return phi_r_.template middleRows<3>(3 * node); }
   Mat<Scalar, 3, NModes> phi_theta(Index node) const {
     return phi_theta_.template middleRows<3>(3 * node);
+  }
+
+  /// Modal geometric stiffness per unit inertial load case, for scenes with the
+  /// GeometricStiffening effect (reduction/modal_geometric_stiffness.hpp). Fails if the data
+  /// has fewer modes than the body or is not finite.
+  Status set_geometric_stiffness(const reduction::ModalGeometricStiffness& g) {
+    if (g.num_modes < NModes)
+      return make_error(ErrorCode::size_mismatch, "geometric stiffness for a body with ", NModes,
+                        " modes: the data has only ", g.num_modes);
+    geometric_.resize(NModes, reduction::num_inertial_load_cases * NModes);
+    for (int j = 0; j < reduction::num_inertial_load_cases; ++j) {
+      const MatrixXd& c = g.cases[static_cast<std::size_t>(j)];
+      if (c.rows() < NModes || c.cols() < NModes || !c.allFinite())
+        return make_error(ErrorCode::invalid_argument, "geometric stiffness: load case ", j, " is ",
+                          c.rows(), "x", c.cols(), " or not finite (need ", NModes, "x", NModes,
+                          ")");
+      geometric_.template middleCols<NModes>(NModes * j) =
+          c.topLeftCorner(NModes, NModes).template cast<Scalar>();
+    }
+    return Status::success();
+  }
+  bool has_geometric_stiffness() const { return geometric_.cols() > 0; }
+  /// K_G = sum_j c_j G_j for the body's rigid-body inertial load: frame acceleration minus
+  /// gravity a_g and angular acceleration alpha (body axes), angular velocity w (body). Zero if
+  /// no geometric stiffness was set.
+  void geometric_stiffness(const Vec3<Scalar>& a_g, const Vec3<Scalar>& alpha,
+                           const Vec3<Scalar>& w, MatN& kg) const {
+    kg.setZero();
+    if constexpr (NModes > 0) {
+      if (!has_geometric_stiffness()) return;
+      const Scalar w2 = w.squaredNorm();
+      const Scalar c[reduction::num_inertial_load_cases] = {
+          a_g(0),           a_g(1),      a_g(2),           alpha(0),
+          alpha(1),         alpha(2),    w(0) * w(0) - w2, w(1) * w(1) - w2,
+          w(2) * w(2) - w2, w(0) * w(1), w(1) * w(2),      w(2) * w(0)};
+      for (int j = 0; j < reduction::num_inertial_load_cases; ++j)
+        if (c[j] != Scalar(0)) kg += c[j] * geometric_.template middleCols<NModes>(NModes * j);
+    }
   }
 
   // ---- body vectors (markers) -------------------------------------------------------------
@@ -315,6 +354,7 @@ class BodyModel {
   std::vector<unsigned char> node_has_rotation_;
   Eigen::Matrix<Scalar, Eigen::Dynamic, NModes> phi_r_;
   Eigen::Matrix<Scalar, Eigen::Dynamic, NModes> phi_theta_;
+  Eigen::Matrix<Scalar, NModes, Eigen::Dynamic> geometric_;  ///< [G_1 ... G_12], or empty
 };
 
 /// FFRFBody<10> is a flexible body with 10 modes in double; FFRFBody<10, float> in float.

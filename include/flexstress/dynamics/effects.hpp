@@ -17,6 +17,11 @@ struct ModalDamping {};
 struct SpringDampers {};
 /// A user callback that adds external forces (Scene::external_forces).
 struct ExternalForces {};
+/// Geometric stiffness of flexible bodies under their own inertial and gravity loads
+/// (centrifugal stiffening of rotating beams): K_G(state) p with K_G a combination of
+/// precomputed modal matrices (reduction/modal_geometric_stiffness.hpp), which each flexible
+/// body must be given (BodyModel::set_geometric_stiffness).
+struct GeometricStiffening {};
 
 /// The list of effects a scene simulates.
 template <class... E>

@@ -42,7 +42,7 @@ class ExplicitIntegrator {
   };
 
   explicit ExplicitIntegrator(const SceneT& scene, const Settings& settings = Settings())
-      : scene_(&scene), settings_(settings) {
+      : scene_(&scene), settings_(settings), model_status_(scene.check_effect_data()) {
     if (settings_.accelerations.baumgarte_frequency == Scalar(0))
       settings_.accelerations.baumgarte_frequency = Scalar(0.1) / settings_.step;
     for (VecV* v : {&k1_, &k2_, &k3_, &k4_, &v0_, &v1_, &v2_, &v3_, &v4_, &dx_, &tmp_})
@@ -55,11 +55,15 @@ class ExplicitIntegrator {
 
   const Settings& settings() const { return settings_; }
   Workspace& workspace() { return ws_; }
+  /// Whether the scene has the data its effects need; if not, step() returns invalid_input
+  /// and this says what is missing.
+  const Status& model_status() const { return model_status_; }
 
   /// Largest h * omega over the scene's modes for the current step size.
   Scalar stability_number() const { return settings_.step * scene_->max_modal_frequency(); }
 
   StepStatus step(State& s) {
+    if (!model_status_.ok()) return StepStatus::invalid_input;
     if (stability_number() > settings_.stability_limit)
       return StepStatus::step_above_stability_limit;
     const Scalar h = settings_.step;
@@ -96,7 +100,7 @@ class ExplicitIntegrator {
     s.v = v0_ + (h / 6) * (k1_ + 2 * k2_ + 2 * k3_ + k4_);
     s.t = t0 + h;
     if (settings_.project) project(s);
-    if (!s.v.allFinite()) {
+    if (!s.v.allFinite() || !scene_->coordinates_finite(s)) {
       s.q = q0;
       s.v = v0_;
       s.t = t0;
@@ -172,6 +176,7 @@ class ExplicitIntegrator {
 
   const SceneT* scene_;
   Settings settings_;
+  Status model_status_;
   Workspace ws_;
   ConstrainedAccelerations<SceneT> accel_;
   VecV k1_, k2_, k3_, k4_, v0_, v1_, v2_, v3_, v4_, dx_, tmp_;

@@ -151,6 +151,7 @@ class ImplicitIntegrator {
   /// velocities onto B v + Phi_t = 0, then accelerations and multipliers from the equations of
   /// motion (index-1 augmented Lagrangian iteration). Sets a = v_dot.
   Status initialize(State& s, int max_iterations = 100) {
+    if (Status data = scene_->check_effect_data(); !data) return data;
     const Scalar tol = settings_.position_floor * Scalar(10);
     scene_->update_kinematics(s, ws_);
     scene_->update_constraints(s, ws_);
@@ -354,7 +355,7 @@ class ImplicitIntegrator {
     scene_->mass_blocks(ws_, iteration_);
     const Scalar m_ref = max_abs(iteration_.diagonal());
     iteration_ *= beta_prime_;
-    scene_->add_modal_stiffness_damping(iteration_, Scalar(1), gamma_prime_);
+    scene_->add_modal_stiffness_damping(ws_, iteration_, Scalar(1), gamma_prime_);
     alpha_ = settings_.penalty_factor * beta_prime_ * m_ref;
     scene_->add_constraint_gram(ws_, alpha_, iteration_);
     llt_.compute(iteration_);

@@ -218,6 +218,7 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
     std::tuple<BodyKinematics<Scalar, B::num_modes>...> kin;
     std::tuple<typename B::Terms...> terms;
     std::tuple<typename B::MatV...> mass;
+    std::tuple<typename B::MatN...> geometric;  ///< K_G (GeometricStiffening)
     VecV force;  ///< generalized applied force: Q_e - Q_v - K p - D p_dot
     MatCV jac;   ///< B
     VecC phi, phi_t, conv;
@@ -295,6 +296,17 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
             fp.noalias() -= body.modal_stiffness() * kin.p;
             if constexpr (Effects_::template has<ModalDamping>)
               fp.noalias() -= body.modal_damping() * kin.p_dot;
+            if constexpr (Effects_::template has<GeometricStiffening>) {
+              // The load factors of the current iterate: its accelerations (the integrators
+              // keep s.v_dot at the iterate) and angular velocity.
+              auto& kg = std::get<K>(w.geometric);
+              const auto vd = s.v_dot.template segment<body_nv[K]>(body_offset[K]);
+              Vec3<Scalar> a_g = kin.rotation.transpose() * vd.template head<3>();
+              if constexpr (Effects_::template has<Gravity>)
+                a_g.noalias() -= kin.rotation.transpose() * gravity;
+              body.geometric_stiffness(a_g, vd.template segment<3>(3), kin.omega, kg);
+              fp.noalias() -= kg * kin.p;
+            }
           }
           f = fb;
         },
@@ -375,9 +387,11 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   }
 
   /// Adds the modal stiffness and damping (the derivatives of the elastic forces) to the
-  /// modal blocks of an iteration matrix: m += k_factor K + c_factor D.
+  /// modal blocks of an iteration matrix: m += k_factor (K + K_G) + c_factor D, with the
+  /// geometric stiffness K_G of the last update_dynamics (GeometricStiffening).
   template <class M>
-  void add_modal_stiffness_damping(M& m, Scalar k_factor, Scalar c_factor) const {
+  void add_modal_stiffness_damping(const Workspace& w, M& m, Scalar k_factor,
+                                   Scalar c_factor) const {
     detail::for_each_index(
         [&](auto k) {
           constexpr int K = static_cast<int>(decltype(k)::value);
@@ -388,9 +402,29 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
             block += k_factor * body.modal_stiffness();
             if constexpr (Effects_::template has<ModalDamping>)
               block += c_factor * body.modal_damping();
+            if constexpr (Effects_::template has<GeometricStiffening>)
+              block += k_factor * std::get<K>(w.geometric);
           }
         },
         std::make_index_sequence<num_bodies>{});
+    (void)w;
+  }
+
+  /// Checks that every flexible body has the data the scene's effects need (the geometric
+  /// stiffness of GeometricStiffening); the integrators' initialize() calls it.
+  Status check_effect_data() const {
+    Status status = Status::success();
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr int K = static_cast<int>(decltype(k)::value);
+          if constexpr (has_modes<K> && Effects_::template has<GeometricStiffening>)
+            if (status.ok() && !std::get<K>(bodies).has_geometric_stiffness())
+              status = make_error(ErrorCode::invalid_argument, "body ", K,
+                                  ": the scene has GeometricStiffening but the body has no "
+                                  "geometric stiffness (BodyModel::set_geometric_stiffness)");
+        },
+        std::make_index_sequence<num_bodies>{});
+    return status;
   }
 
   /// Moves the coordinates along a velocity-space increment dx (Lie-group update):

@@ -40,6 +40,7 @@ template <class SceneT>
 Status solve_static_equilibrium(const SceneT& scene, typename SceneT::State& s,
                                 const StaticEquilibriumOptions& opt = {}) {
   using Scalar = typename SceneT::scalar_type;
+  if (Status data = scene.check_effect_data(); !data) return data;
   typename SceneT::Workspace w;
   typename SceneT::MatVV m;
   typename SceneT::VecV r, dx;
@@ -65,7 +66,7 @@ Status solve_static_equilibrium(const SceneT& scene, typename SceneT::State& s,
       m.setZero();
       scene.mass_blocks(w, m);
       m *= c;
-      scene.add_modal_stiffness_damping(m, Scalar(1), Scalar(0));
+      scene.add_modal_stiffness_damping(w, m, Scalar(1), Scalar(0));
       // alpha B^T B gets penalty_factor times the largest diagonal of K + c M: scaling by B's
       // own column norms matters for flexible bodies, whose joint rows carry node rotations
       // Phi_theta of order 100 per unit modal coordinate.

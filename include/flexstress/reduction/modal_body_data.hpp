@@ -94,13 +94,46 @@ struct ReductionSpec {
   fe::MassOptions mass;
   fe::EigenOptions eigen;
   double damping_ratio = 0.0;  ///< the same modal damping ratio for every mode
+  /// Body frame attached to the interface instead of floating: keep the Craig-Bampton
+  /// fixed-interface modes themselves (no motion at the interface node), without
+  /// orthonormalization, so that the body frame is the interface node's frame. Needs
+  /// Craig-Bampton with one six-DOF interface node. This is the frame of rotor-blade codes and
+  /// of the "conventional" linear model of Kane, Ryan & Banerjee (1987); its modes are not
+  /// mass-orthogonal to rigid motion, and the FFRF equations keep every coupling term.
+  bool interface_attached_frame = false;
 };
+
+/// The fixed-interface modes of a Craig-Bampton basis as they are (interface_attached_frame),
+/// with the residuals of their M- and K-orthogonality.
+FLEXSTRESS_PRECOMPUTE
+Result<DeformationModes> attached_frame_modes(const ComponentModes& cm, const ReductionSpec& spec) {
+  if (cm.method != ReductionMethod::craig_bampton || spec.interface.size() != 1 ||
+      cm.num_static != 6)
+    return make_error(ErrorCode::invalid_argument,
+                      "an interface-attached body frame needs Craig-Bampton with exactly one "
+                      "six-DOF interface node (got ",
+                      spec.interface.size(), " interface nodes, ", cm.num_static, " static modes)");
+  if (cm.num_dynamic == 0)
+    return make_error(ErrorCode::invalid_argument,
+                      "an interface-attached body frame needs fixed-interface modes "
+                      "(dynamic_modes.count > 0)");
+  DeformationModes d;
+  d.modes = cm.basis.leftCols(cm.num_dynamic);
+  d.eigenvalues = cm.dynamic_eigenvalues;
+  const MatrixXd m = d.modes.transpose() * (cm.model.mass_all * d.modes);
+  const MatrixXd k = d.modes.transpose() * (cm.model.stiffness_all * d.modes);
+  d.mass_residual = (m - MatrixXd::Identity(m.rows(), m.cols())).cwiseAbs().maxCoeff();
+  d.stiffness_residual =
+      (k - MatrixXd(d.eigenvalues.asDiagonal())).cwiseAbs().maxCoeff() / d.eigenvalues.maxCoeff();
+  return d;
+}
 
 /// From a component-mode basis to modal body data.
 FLEXSTRESS_PRECOMPUTE
 Result<ModalBodyData> make_modal_body(const fe::Mesh& mesh, const ComponentModes& cm,
                                       const ReductionSpec& spec) {
-  auto deformation = orthonormalize(mesh, cm);
+  auto deformation =
+      spec.interface_attached_frame ? attached_frame_modes(cm, spec) : orthonormalize(mesh, cm);
   if (!deformation) return deformation.error();
   const Index available = deformation->eigenvalues.size();
   const Index k = spec.keep_modes < 0 ? available : spec.keep_modes;
@@ -119,7 +152,9 @@ Result<ModalBodyData> make_modal_body(const fe::Mesh& mesh, const ComponentModes
   d.inertia = std::move(*integrals);
   d.eigenvalues = deformation->eigenvalues.head(k);
   d.damping_ratios = VectorXd::Constant(k, spec.damping_ratio);
-  d.modal_stiffness = MatrixXd(d.eigenvalues.asDiagonal());
+  d.modal_stiffness = spec.interface_attached_frame
+                          ? MatrixXd(modes.transpose() * (cm.model.stiffness_all * modes))
+                          : MatrixXd(d.eigenvalues.asDiagonal());
   d.mass_residual = deformation->mass_residual;
   d.stiffness_residual = deformation->stiffness_residual;
   const Index nn = mesh.num_nodes();

@@ -18,6 +18,7 @@
 #include <flexstress/fe/beam_line.hpp>
 #include <flexstress/fe/rhs_attachment_mesh.hpp>
 #include <flexstress/reduction/modal_body_data.hpp>
+#include <flexstress/reduction/modal_geometric_stiffness.hpp>
 #include <flexstress/stress/fused_stress.hpp>
 #include <flexstress/stress/host_point.hpp>
 #include <flexstress/stress/stress_outputs.hpp>
@@ -76,6 +77,14 @@ Result<Crane<N, StorageLimit, Scalar, EffectList>> make_crane(
   cr.boom = std::move(*boom);
   auto body = FFRFBody<N, Scalar>::from_modal_data(cr.boom.data);
   if (!body) return body.error();
+  if constexpr (EffectList::template has<GeometricStiffening>) {
+    // The boom's inertial loads leave it through A and B: both clamped for the stress states
+    // (docs/crane.md).
+    auto g = reduction::modal_geometric_stiffness(
+        cr.boom.mesh, cr.boom.data, reduction::clamp_interface_nodes(cr.boom.data));
+    if (!g) return g.error();
+    if (Status st = body->set_geometric_stiffness(*g); !st) return st.error();
+  }
   auto& sc = cr.scene;
   sc.template body<0>() = *body;
   // Cylinder (1) and rod (2): slender rigid bodies, frames with z along C -> B, origins at C and

@@ -56,6 +56,8 @@
   X(fe::Matrix12d, fe::beam_mass,                                                                \
     (const fe::Mesh&, const fe::BeamElement&, const fe::MassOptions&))                           \
   X(Result<fe::BrickLocator>, fe::BrickLocator::build, (const fe::Mesh&, double))                \
+  X(Result<fe::BrickPoint>, fe::BrickLocator::locate, (const Vector3d&) const)                   \
+  X(void, fe::BeamGeometry::interpolation, (double, fe::Matrix3x12d&, fe::Matrix3x12d&) const)   \
   X(Result<fe::SparseMatrixd>, fe::nodal_stress_operator,                                        \
     (const fe::Mesh&, const fe::DofMap&, const std::vector<Index>&))                             \
   X(Result<fe::SparseMatrixd>, fe::point_stress_operator,                                        \

@@ -153,6 +153,7 @@ struct BeamGeometry {
         x0(mesh.node(b.nodes[0])) {}
 
   /// Interpolation matrices in *global* axes acting on the *global* element DOF vector.
+  FLEXSTRESS_PRECOMPUTE
   void interpolation(double xi, Matrix3x12d& n_u, Matrix3x12d& n_r) const {
     Matrix3x12d lu, lr;
     beam_local_interpolation(xi, length, lu, lr);

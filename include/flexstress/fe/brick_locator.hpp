@@ -99,6 +99,8 @@ class BrickLocator {
   /// bricks contain p (a point on a shared face or node), the one in whose interior p lies
   /// deepest (smallest max |xi_k|) wins, the lowest element id on a tie. Fails with a message
   /// naming the point if it is not finite or lies outside every brick.
+  /// (A template, like the precompute: including this header then compiles no Newton solve.)
+  FLEXSTRESS_PRECOMPUTE
   Result<BrickPoint> locate(const Vector3d& p) const {
     if (!p.allFinite())
       return make_error(ErrorCode::invalid_argument, "brick locator: point (", p.x(), ", ", p.y(),

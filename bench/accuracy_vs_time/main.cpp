@@ -49,6 +49,7 @@ const char* name_of(study::EffectSet e) {
     case study::EffectSet::all: return "G+QV+MD";
     case study::EffectSet::no_quadratic_velocity: return "G+MD";
     case study::EffectSet::no_damping: return "G+QV";
+    case study::EffectSet::with_stiffening: return "G+QV+MD+GS";
     default: return "G";
   }
 }
@@ -152,7 +153,7 @@ std::vector<Knobs> configurations() {
     add(k, "scalar", "16 modes, h 1 ms, float");
   }
   for (auto e : {study::EffectSet::no_quadratic_velocity, study::EffectSet::no_damping,
-                 study::EffectSet::gravity_only}) {
+                 study::EffectSet::gravity_only, study::EffectSet::with_stiffening}) {
     Knobs k = base;
     k.effects = e;
     add(k, "effects", std::string("16 modes, h 1 ms, ") + name_of(e));

@@ -23,7 +23,7 @@ using namespace flexstress;
 enum class Recovery { fused, influence, stress_modes, resolve };
 enum class Integrator { implicit, explicit_rk4 };
 /// Effect lists a run can use (each one is a separate scene type, compiled in runs_*.cpp).
-enum class EffectSet { all, no_quadratic_velocity, no_damping, gravity_only };
+enum class EffectSet { all, no_quadratic_velocity, no_damping, gravity_only, with_stiffening };
 
 /// The knobs of one run. Mode count, Scalar and effects pick the compiled scene type; the rest
 /// are run-time settings.

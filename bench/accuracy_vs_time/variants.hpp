@@ -21,6 +21,11 @@ inline RunResult run_variant_at(const Knobs& k) {
     case EffectSet::gravity_only:
       if constexpr (N == 16) return run_crane<N, double, Effects<Gravity>>(k);
       break;
+    case EffectSet::with_stiffening:
+      if constexpr (N == 16)
+        return run_crane<N, double,
+                         Effects<Gravity, QuadraticVelocity, ModalDamping, GeometricStiffening>>(k);
+      break;
     default: break;
   }
   return not_compiled(k);

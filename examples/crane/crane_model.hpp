@@ -80,8 +80,8 @@ Result<Crane<N, StorageLimit, Scalar, EffectList>> make_crane(
   if constexpr (EffectList::template has<GeometricStiffening>) {
     // The boom's inertial loads leave it through A and B: both clamped for the stress states
     // (docs/crane.md).
-    auto g = reduction::modal_geometric_stiffness(
-        cr.boom.mesh, cr.boom.data, reduction::clamp_interface_nodes(cr.boom.data));
+    auto g = reduction::modal_geometric_stiffness(cr.boom.mesh, cr.boom.data,
+                                                  reduction::clamp_interface_nodes(cr.boom.data));
     if (!g) return g.error();
     if (Status st = body->set_geometric_stiffness(*g); !st) return st.error();
   }

@@ -2,34 +2,18 @@
 // hot-spot stress at the welded detail D per step from fused modal rows, and its fatigue damage.
 // Run with --help for the options. Writes <output>/crane_history.csv, detail_d_peak.vtu and
 // crane_history.png (if gnuplot is installed); prints a summary, then "key: value" lines.
-#include <unistd.h>
 #include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <flexstress/fatigue/damage.hpp>
-#include <flexstress/fatigue/sn_curve.hpp>
-#include <flexstress/fatigue/streaming_damage.hpp>
-#include <flexstress/fe/vtk_writer.hpp>
-
-#include <flexstress/stress/sub_model_inertia.hpp>
-
-#include "crane_model.hpp"
-
-using namespace flexstress;
-using Clock = std::chrono::steady_clock;
+#include "crane_run.hpp"
 
 namespace {
-
-constexpr int kModes = 10;  // the paper's 10 modes: 6 static + 4 fixed-interface
 
 const char* kUsage =
     "usage: crane [options]\n"
@@ -38,13 +22,16 @@ const char* kUsage =
     "                   extension from the start; header lines allowed). Default: the\n"
     "                   synthetic cycle of docs/crane.md\n"
     "  --step S         time step (default 0.001)\n"
+    "  --modes N        boom deformation modes: 10 (default, the paper's: 6 static + 4\n"
+    "                   fixed-interface; 2.4 % off the converged hot-spot history) or 16\n"
+    "                   (within 0.1 %, docs/accuracy-vs-time.md)\n"
     "  --density D      sub-model mesh density (default 1.0: 1792 bricks)\n"
     "  --submodel-inertia  add the detail's own weight and inertia to its stresses (the\n"
     "                   paper leaves it out; off by default)\n"
     "  --output DIR     output folder (default crane-out)\n"
     "  --quiet          no progress line\n"
-    "The boom's mode count is a compile-time constant (10, the paper's); the accuracy study\n"
-    "varies it.\n";
+    "Each mode count is compiled in (a compile-time size); the accuracy study\n"
+    "(bench/accuracy_vs_time) varies it further.\n";
 
 bool read_stroke_csv(const std::string& path, std::vector<double>& t, std::vector<double>& s) {
   std::ifstream in(path);
@@ -85,50 +72,12 @@ bool parse_number(const std::string& key, const std::string& value, double& out)
   return true;
 }
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
-
-// The plot of docs/crane.md: stroke and boom angle, hot-spot and nominal stress, gauges.
-void write_plot(const std::string& dir) {
-  const std::string script = dir + "/crane_history.gp";
-  std::ofstream gp(script);
-  gp << "set terminal pngcairo size 1000,700 font ',10'\n"
-        "set output '"
-     << dir
-     << "/crane_history.png'\n"
-        "set datafile separator ','\n"
-        "set multiplot layout 3,1 title 'Crane work cycle: stroke, boom angle and the stress at "
-        "detail D'\n"
-        "set grid\nset ylabel 'stroke (m)'\nset y2label 'boom angle (deg)'\nset y2tics\n"
-        "set ytics nomirror\n"
-        "f = '"
-     << dir
-     << "/crane_history.csv'\n"
-        "plot f u 1:2 w l lw 2 t 'cylinder stroke', '' u 1:3 axes x1y2 w l lw 2 t 'boom angle'\n"
-        "unset y2tics\nunset y2label\nset ylabel 'stress (MPa)'\n"
-        "plot f u 1:4 w l lw 2 t 'hot spot (IIW type a, toe centre)', "
-        "'' u 1:5 w l lw 1 t 'hot spot (paper, 4/10 mm)', "
-        "'' u 1:9 w l lw 1 t 'hot spot, max along the toe line', "
-        "'' u 1:(-$8) w l lw 1 t 'nominal (minus bottom flange)'\n"
-        "set ylabel 'strain (microstrain)'\nset xlabel 'time (s)'\n"
-        "plot f u 1:6 w l lw 2 t 'gauge at 0.4t', '' u 1:7 w l lw 2 t 'gauge at 1.0t'\n"
-        "unset multiplot\n";
-  gp.close();
-  if (std::system("command -v gnuplot > /dev/null 2>&1") == 0)
-    (void)std::system(("gnuplot '" + script + "'").c_str());
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  crane::CraneSpec spec;
-  double step = 1e-3;
-  bool quiet = false, with_inertia = false;
-  std::string stroke_file, output = "crane-out";
+  crane::RunOptions o;
+  auto& spec = o.spec;
+  double modes = 10;
   for (int i = 1; i < argc; ++i) {
     const std::string key = argv[i];
     if (key == "--help" || key == "-h") {
@@ -136,15 +85,15 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (key == "--quiet") {
-      quiet = true;
+      o.quiet = true;
       continue;
     }
     if (key == "--submodel-inertia") {
-      with_inertia = true;
+      o.with_inertia = true;
       continue;
     }
     const bool known = key == "--payload" || key == "--step" || key == "--density" ||
-                       key == "--stroke" || key == "--output";
+                       key == "--stroke" || key == "--output" || key == "--modes";
     if (!known) {
       std::fprintf(stderr, "error: unknown option '%s'\n%s", key.c_str(), kUsage);
       return 2;
@@ -158,195 +107,41 @@ int main(int argc, char** argv) {
     if (key == "--payload")
       ok = parse_number(key, value, spec.payload_mass) && spec.payload_mass >= 0;
     else if (key == "--step")
-      ok = parse_number(key, value, step) && step > 0 && step <= 0.05;
+      ok = parse_number(key, value, o.step) && o.step > 0 && o.step <= 0.05;
+    else if (key == "--modes")
+      ok = parse_number(key, value, modes) &&
+           std::find(std::begin(crane::kSupportedModes), std::end(crane::kSupportedModes), modes) !=
+               std::end(crane::kSupportedModes);
     else if (key == "--density")
       ok = parse_number(key, value, spec.submodel_density) && spec.submodel_density > 0;
     else if (key == "--stroke")
-      stroke_file = value;
+      o.stroke_file = value;
     else
-      output = value;
+      o.output = value;
+    if (!ok && key == "--modes") {
+      std::fprintf(stderr, "error: --modes must be 10 or 16 (got '%s')\n", value.c_str());
+      return 2;
+    }
     if (!ok) {
       std::fprintf(stderr, "error: bad value '%s' for %s\n", value.c_str(), key.c_str());
       return 2;
     }
   }
-  std::vector<double> t, ds;
-  if (stroke_file.empty())
-    crane::synthetic_cycle(t, ds);
-  else if (!read_stroke_csv(stroke_file, t, ds))
+  if (o.stroke_file.empty())
+    crane::synthetic_cycle(o.t, o.ds);
+  else if (!read_stroke_csv(o.stroke_file, o.t, o.ds))
     return 1;
   std::error_code dir_error;
-  std::filesystem::create_directories(output, dir_error);
+  std::filesystem::create_directories(o.output, dir_error);
   if (dir_error) {
-    std::fprintf(stderr, "error: cannot create output folder '%s': %s\n", output.c_str(),
+    std::fprintf(stderr, "error: cannot create output folder '%s': %s\n", o.output.c_str(),
                  dir_error.message().c_str());
     return 1;
   }
 
-  const auto t_setup = Clock::now();
-  auto made = crane::make_crane<kModes>(spec, t, ds);
-  if (!made) {
-    std::fprintf(stderr, "error: %s\n", made.error().what().c_str());
-    return 1;
+  switch (static_cast<int>(modes)) {
+    case 10: return crane::run<10, crane::fixed_storage_limit>(o);
+    case 16: return crane::run<16, 0>(o);
+    default: return 2;  // unreachable: checked above
   }
-  auto& cr = *made;
-  auto& scene = cr.scene;
-  auto s = cr.initial;
-  using Scene = crane::CraneScene<kModes>;
-  ImplicitIntegrator<Scene>::Settings settings;
-  settings.step = step;
-  ImplicitIntegrator<Scene> integ(scene, settings);
-  if (Status st = integ.initialize(s); !st) {
-    std::fprintf(stderr, "error: %s\n", st.error().what().c_str());
-    return 1;
-  }
-  // Fatigue: IIW hot-spot FAT 100, slope 3 to the knee at 1e7 and Haibach (5) beyond, as IIW
-  // recommends for variable amplitude; streaming rainflow on 128 classes.
-  auto curve = fatigue::iiw_normal_curve(100.0, fatigue::IiwBeyondKnee::haibach);
-  if (!curve) {
-    std::fprintf(stderr, "error: %s\n", curve.error().what().c_str());
-    return 1;
-  }
-  auto model = fatigue::DamageModel<double>::create(*curve);
-  auto grid = fatigue::ClassGrid<double>::create(-400.0, 400.0, 128);
-  if (!model || !grid) {
-    std::fprintf(stderr, "error: fatigue setup failed\n");
-    return 1;
-  }
-  auto meter = fatigue::StreamingDamage<double, 128>::create(*grid, 0, *model);
-  if (!meter) {
-    std::fprintf(stderr, "error: %s\n", meter.error().what().c_str());
-    return 1;
-  }
-  // Optional: the detail's own weight and inertia (stress/sub_model_inertia.hpp), from the
-  // boom frame's acceleration, angular velocity and angular acceleration.
-  std::optional<stress::SubModelInertia<>> inertia;
-  if (with_inertia) {
-    auto built = stress::SubModelInertia<>::build(*cr.sub, cr.outputs);
-    if (!built) {
-      std::fprintf(stderr, "error: %s\n", built.error().what().c_str());
-      return 1;
-    }
-    inertia.emplace(std::move(*built));
-  }
-  VectorXd y_inertia = VectorXd::Zero(cr.fused->num_outputs());
-  auto add_inertia = [&](const Scene::State& st, VectorXd& out) {
-    y_inertia.setZero();
-    inertia->add_to(crane::boom_inertia_coordinates(scene, st), y_inertia);
-    out += y_inertia;
-  };
-  double inertia_hot_max = 0;
-  const double precompute_ms =
-      std::chrono::duration<double, std::milli>(Clock::now() - t_setup).count();
-
-  VectorXd y(cr.fused->num_outputs());
-  cr.fused->evaluate(s.template coordinates<0>().p, y);
-  if (inertia) add_inertia(s, y);
-  const double static_hot = y(cr.hot_spot_row) / 1e6, static_nominal = y(cr.nominal_row) / 1e6;
-  // Beam theory for the boom at rest: moment at the detail from the payload and the boom's own
-  // weight outboard of it, sigma = M c / I at the flange.
-  const fe::BeamSection sec = fe::rectangular_hollow_section(0.150, 0.100, spec.wall);
-  const double xd = 0.5 * (spec.submodel_x0 + spec.submodel_x1), g = 9.81;
-  const double m_beam = 7850 * sec.area * g * std::pow(spec.boom_length - xd, 2) / 2 +
-                        spec.payload_mass * g * (spec.payload_x - xd);
-  const double beam_theory = m_beam * 0.075 / sec.iz / 1e6;
-
-  std::ofstream csv(output + "/crane_history.csv");
-  if (!csv) {
-    std::fprintf(stderr, "error: cannot write %s/crane_history.csv\n", output.c_str());
-    return 1;
-  }
-  csv << "time_s,stroke_m,boom_angle_deg,hot_spot_MPa,hot_spot_paper_MPa,gauge_04t_microstrain,"
-         "gauge_10t_microstrain,bottom_flange_MPa,toe_line_max_MPa,newton_iterations";
-  for (int k = 0; k < kModes; ++k) csv << ",p" << k;
-  csv << '\n';
-  csv.precision(9);
-  const double t_end = t.back();
-  const auto steps = static_cast<long>(std::ceil((t_end - t.front()) / step));
-  std::vector<double> step_us, recovery_ns;
-  step_us.reserve(static_cast<std::size_t>(steps));
-  recovery_ns.reserve(static_cast<std::size_t>(steps));
-  double hot_min = 1e300, hot_max = -1e300, toe_max = -1e300, t_peak = 0;
-  Eigen::Matrix<double, kModes, 1> p_peak = s.template coordinates<0>().p;
-  const bool progress = !quiet && ::isatty(STDERR_FILENO);
-  long failed = 0;
-  for (long i = 0; i < steps; ++i) {
-    const auto a = Clock::now();
-    const StepStatus st = integ.step(s);
-    const auto b = Clock::now();
-    cr.fused->evaluate(s.template coordinates<0>().p, y);
-    const auto c = Clock::now();
-    if (st != StepStatus::ok) {
-      ++failed;
-      std::fprintf(stderr, "error: step %ld at t = %g s: %s\n", i, s.t, to_string(st));
-      break;
-    }
-    step_us.push_back(std::chrono::duration<double, std::micro>(b - a).count());
-    recovery_ns.push_back(std::chrono::duration<double, std::nano>(c - b).count());
-    if (inertia) {
-      add_inertia(s, y);
-      inertia_hot_max = std::max(inertia_hot_max, std::abs(y_inertia(cr.hot_spot_row)) / 1e6);
-    }
-    const double hot = y(cr.hot_spot_row) / 1e6;
-    double line_max = -1e300;
-    for (Index k = 0; k < cr.toe_line_count; ++k)
-      line_max = std::max(line_max, y(cr.toe_line_first + k) / 1e6);
-    (void)meter->push(hot);
-    if (hot > hot_max) {
-      hot_max = hot;
-      t_peak = s.t;
-      p_peak = s.template coordinates<0>().p;
-    }
-    hot_min = std::min(hot_min, hot);
-    toe_max = std::max(toe_max, line_max);
-    const auto rod = scene.template joint<4>().params.law(s.t);
-    csv << s.t << ',' << rod.value - (spec.b - spec.c).norm() << ','
-        << crane::boom_angle(s.template coordinates<0>().theta) * 180 / M_PI << ',' << hot << ','
-        << y(cr.paper_hot_spot_row) / 1e6 << ',' << y(cr.gauge_04t) * 1e6 << ','
-        << y(cr.gauge_10t) * 1e6 << ',' << y(cr.nominal_row) / 1e6 << ',' << line_max << ','
-        << integ.statistics().last_iterations;
-    for (int k = 0; k < kModes; ++k) csv << ',' << s.template coordinates<0>().p(k);
-    csv << '\n';
-    if (progress && i % 500 == 0) std::fprintf(stderr, "\r  t = %6.2f of %.2f s", s.t, t_end);
-  }
-  if (progress) std::fprintf(stderr, "\r%40s\r", "");
-  csv.close();
-  // The sub-model at the peak, for ParaView (and docs/crane.md's picture).
-  const VectorXd u_peak = cr.sub->solve(cr.boundary_modes.leftCols(kModes) * p_peak);
-  auto fields = fe::standard_fields(cr.sub->mesh(), cr.sub->model().dofs, u_peak);
-  if (fields) (void)fe::write_vtu(output + "/detail_d_peak.vtu", cr.sub->mesh(), *fields);
-  write_plot(output);
-
-  const double damage = meter->damage(fatigue::CycleClosure::repeating);
-  auto life = fatigue::predict_life(damage, t_end - t.front());
-  std::printf("crane: FFRF boom with %d modes, %zu-brick sub-model at detail D, %s cycle of %g s\n",
-              kModes, cr.detail.mesh.hexes().size(), stroke_file.empty() ? "synthetic" : "user",
-              t_end - t.front());
-  std::printf(
-      "  at rest: bottom flange %.2f MPa (beam theory M c / I: %.2f), hot spot %.2f MPa "
-      "(%.3f x nominal)\n",
-      static_nominal, -beam_theory, static_hot, static_hot / beam_theory);
-  std::printf("  hot spot %.2f to %.2f MPa (peak at t = %.3f s); toe line max %.2f MPa\n", hot_min,
-              hot_max, t_peak, toe_max);
-  std::printf("  stress recovery %.0f ns per step for %lld outputs; %.2f Newton iterations/step\n",
-              percentile(recovery_ns, 0.5), static_cast<long long>(cr.fused->num_outputs()),
-              static_cast<double>(integ.statistics().iterations) /
-                  static_cast<double>(std::max<std::size_t>(1, step_us.size())));
-  std::printf("  fatigue: IIW FAT 100 (Haibach), repeating-history closure per work cycle\n");
-  std::printf("  outputs in %s/: crane_history.csv, detail_d_peak.vtu, crane_history.png\n",
-              output.c_str());
-  std::printf("precompute_ms: %.1f\n", precompute_ms);
-  std::printf("steps: %zu\n", step_us.size());
-  std::printf("step_us_median: %.2f\n", percentile(step_us, 0.5));
-  std::printf("step_us_max: %.2f\n", percentile(step_us, 1.0));
-  std::printf("recovery_ns_median: %.0f\n", percentile(recovery_ns, 0.5));
-  std::printf("static_nominal_MPa: %.3f\n", static_nominal);
-  std::printf("beam_theory_nominal_MPa: %.3f\n", -beam_theory);
-  std::printf("static_hotspot_MPa: %.3f\n", static_hot);
-  std::printf("hotspot_max_MPa: %.3f\n", hot_max);
-  std::printf("hotspot_min_MPa: %.3f\n", hot_min);
-  std::printf("damage_per_cycle: %.6g\n", damage);
-  std::printf("life_cycles: %.6g\n", life ? life->work_cycles : 0.0);
-  if (inertia) std::printf("submodel_inertia_hotspot_max_MPa: %.4f\n", inertia_hot_max);
-  return failed ? 1 : 0;
 }

@@ -49,6 +49,7 @@
 #include "flexstress/dynamics/constrained_accelerations.hpp"
 #include "flexstress/dynamics/constraint_primitives.hpp"
 #include "flexstress/dynamics/effects.hpp"
+#include "flexstress/dynamics/energy_audit.hpp"
 #include "flexstress/dynamics/explicit_integrator.hpp"
 #include "flexstress/dynamics/force_elements.hpp"
 #include "flexstress/dynamics/ground_motion.hpp"

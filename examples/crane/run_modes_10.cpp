@@ -1,0 +1,4 @@
+// The crane's run with 10 boom modes (crane_run.hpp), in its own unit.
+#include "crane_run.hpp"
+
+template int crane::run<10, crane::fixed_storage_limit>(const crane::RunOptions&);

@@ -1,15 +1,18 @@
-// The real-time path allocates nothing: an implicit and an explicit step of a flexible scene,
-// and the per-step stress recovery (fused rows, the influence form, a principal stress, the
-// whole field from modal stress modes). Counted
+// The real-time path allocates nothing: an implicit and an explicit step of a flexible scene
+// (also with geometric stiffening, and with the energy audit recording each step), and the
+// per-step stress recovery (fused rows, the influence form, a principal stress, the whole field
+// from modal stress modes). Counted
 // by a replaced operator new; Eigen's own guard (EIGEN_RUNTIME_NO_MALLOC) aborts on any Eigen
 // heap allocation in builds with assertions (the sanitizer build in CI).
 #include <cmath>
 
 #include <doctest/doctest.h>
 
+#include <flexstress/dynamics/energy_audit.hpp>
 #include <flexstress/dynamics/explicit_integrator.hpp>
 #include <flexstress/dynamics/implicit_integrator.hpp>
 #include <flexstress/fe/rhs_attachment_mesh.hpp>
+#include <flexstress/reduction/modal_geometric_stiffness.hpp>
 #include <flexstress/stress/fused_stress.hpp>
 #include <flexstress/stress/host_point.hpp>
 #include <flexstress/stress/modal_stress_modes.hpp>
@@ -163,5 +166,37 @@ TEST_CASE("with dynamic storage (allocated once at setup) the steps allocate not
   }
   CHECK(counted == 0);
   CHECK(s.t == doctest::Approx(0.201).epsilon(1e-9));
+  CHECK(explicit_steps_allocate(scene) == 0);
+}
+
+TEST_CASE("geometric stiffening and the energy audit allocate nothing per step either") {
+  using Stiffened = Scene<double, Bodies<FFRFBody<N>>, Joints<Revolute<ground, 0>>,
+                          Effects<Gravity, QuadraticVelocity, ModalDamping, GeometricStiffening>>;
+  const auto host = hinged_host();
+  auto scene = make_hinged<Stiffened>(host);
+  auto g = reduction::modal_geometric_stiffness(host.mesh, host.data,
+                                                reduction::clamp_interface_nodes(host.data));
+  REQUIRE(g.ok());
+  REQUIRE(scene.body<0>().set_geometric_stiffness(*g).ok());
+  Stiffened::State s;
+  s.v(5) = 2.0;  // spinning: the centrifugal load cases contribute
+  ImplicitIntegrator<Stiffened> implicit(scene);
+  REQUIRE(implicit.initialize(s).ok());
+  EnergyAudit<Stiffened> audit(scene);
+  audit.start(s);
+  REQUIRE(implicit.step(s) == StepStatus::ok);
+  audit.record(s);
+  long long counted = 0;
+  {
+    NoAllocationScope scope;
+    for (int i = 0; i < 200; ++i) {
+      if (implicit.step(s) != StepStatus::ok) break;
+      audit.record(s);
+    }
+    counted = scope.count();
+  }
+  CHECK(counted == 0);
+  CHECK(s.t == doctest::Approx(0.201).epsilon(1e-9));
+  CHECK(std::isfinite(audit.residual()));
   CHECK(explicit_steps_allocate(scene) == 0);
 }

@@ -53,6 +53,7 @@
 #include "flexstress/dynamics/explicit_integrator.hpp"
 #include "flexstress/dynamics/force_elements.hpp"
 #include "flexstress/dynamics/ground_motion.hpp"
+#include "flexstress/dynamics/hydraulic_cylinder.hpp"
 #include "flexstress/dynamics/implicit_integrator.hpp"
 #include "flexstress/dynamics/joints.hpp"
 #include "flexstress/dynamics/linearize.hpp"

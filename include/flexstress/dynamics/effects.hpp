@@ -22,6 +22,9 @@ struct ExternalForces {};
 /// precomputed modal matrices (reduction/modal_geometric_stiffness.hpp), which each flexible
 /// body must be given (BodyModel::set_geometric_stiffness).
 struct GeometricStiffening {};
+/// Valve-controlled hydraulic cylinders among the scene's force elements
+/// (dynamics/hydraulic_cylinder.hpp): chamber pressures solved inside the implicit step.
+struct HydraulicDrive {};
 
 /// The list of effects a scene simulates.
 template <class... E>

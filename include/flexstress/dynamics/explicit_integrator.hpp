@@ -29,6 +29,9 @@ class ExplicitIntegrator {
   using VecV = typename SceneT::VecV;
   using MatVV = typename SceneT::MatVV;
   static constexpr int nv = SceneT::nv;
+  static_assert(!SceneT::has_force_states,
+                "force elements with internal states (HydraulicDrive) are solved inside the "
+                "implicit step: use ImplicitIntegrator");
 
   struct Settings {
     Scalar step = Scalar(1e-3);

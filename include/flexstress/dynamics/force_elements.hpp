@@ -1,10 +1,14 @@
 // Force elements between markers: a linear spring-damper along the line between two marker
 // origins (translational spring-damper-actuator, TSDA). Active with the SpringDampers effect.
+// A force element kind names the effect that activates it (`effect`); one with internal
+// states (hydraulic_cylinder.hpp) also has a State type and a commit() the scene calls after
+// each accepted step.
 #pragma once
 
 #include <cmath>
 
 #include "flexstress/core/types.hpp"
+#include "flexstress/dynamics/effects.hpp"
 #include "flexstress/dynamics/marker.hpp"
 
 namespace flexstress {
@@ -14,6 +18,7 @@ namespace flexstress {
 template <int I, int J>
 struct SpringDamper {
   static constexpr int body_i = I, body_j = J;
+  using effect = SpringDampers;  ///< active in scenes that name this effect
   template <class Scalar>
   struct Params {
     Scalar stiffness = Scalar(0);

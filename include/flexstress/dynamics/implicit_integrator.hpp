@@ -191,6 +191,10 @@ class ImplicitIntegrator {
     }
     factorize_projection(s);  // the metric at the assembled configuration
     project_velocities(s, max_iterations);
+    if constexpr (SceneT::has_force_states) {  // chamber pressures as set, at this position
+      scene_->update_kinematics(s, ws_);
+      scene_->start_force_states(s, ws_);
+    }
     // Accelerations: (M + alpha B^T B) v_dot = Q - B^T lambda - alpha B^T conv, iterated.
     scene_->evaluate(s, ws_);
     iteration_.setZero();
@@ -325,6 +329,7 @@ class ImplicitIntegrator {
     // from step to step without damping.
     scene_->update_kinematics(s, ws_);
     scene_->update_constraints(s, ws_);
+    if constexpr (SceneT::has_force_states) scene_->commit_force_states(s, ws_);
     if (settings_.project_velocities) {
       project_velocities(s, settings_.projection_iterations);
       if (settings_.project_accelerations) {

@@ -66,6 +66,20 @@ struct modes_of<K, Tuple, true> {
   static constexpr int value = 0;
 };
 
+/// Internal state of a force element kind: its State<Scalar> if it has one (a hydraulic
+/// cylinder's chamber pressures), else nothing.
+struct NoForceState {};
+template <class Kind, class Scalar, class = void>
+struct force_state {
+  using type = NoForceState;
+  static constexpr bool stateful = false;
+};
+template <class Kind, class Scalar>
+struct force_state<Kind, Scalar, std::void_t<typename Kind::template State<Scalar>>> {
+  using type = typename Kind::template State<Scalar>;
+  static constexpr bool stateful = true;
+};
+
 template <class F, std::size_t... I>
 constexpr void for_each_index(F&& f, std::index_sequence<I...>) {
   (f(std::integral_constant<std::size_t, I>{}), ...);
@@ -188,6 +202,8 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
     std::tuple<BodyCoordinates<Scalar, B::num_modes>...> q;
     VecV v, v_dot, a;  ///< velocities, accelerations, algorithmic accelerations (gen-alpha)
     VecC lambda;       ///< constraint multipliers
+    /// Internal states of the force elements (the last accepted step's), in their order.
+    std::tuple<typename detail::force_state<F, Scalar>::type...> force_states;
     State() {
       v.setZero(nv);
       v_dot.setZero(nv);
@@ -311,10 +327,9 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
           f = fb;
         },
         std::make_index_sequence<num_bodies>{});
-    if constexpr (Effects_::template has<SpringDampers>)
-      detail::for_each_index(
-          [&](auto k) { apply_force_element<static_cast<int>(decltype(k)::value)>(w); },
-          std::make_index_sequence<num_forces>{});
+    detail::for_each_index(
+        [&](auto k) { apply_force_element<static_cast<int>(decltype(k)::value)>(s, w); },
+        std::make_index_sequence<num_forces>{});
     if constexpr (Effects_::template has<ExternalForces>) {
       if (external_forces != nullptr) external_forces(*this, s.t, w, external_forces_user);
     }
@@ -330,6 +345,18 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
     w.force.template segment<body_nv[K]>(body_offset[K]) +=
         m.origin.row(std::get<static_cast<std::size_t>(K)>(w.kin), f).transpose();
   }
+
+  /// Whether any active force element has internal states (integrators then call the two
+  /// functions below).
+  static constexpr bool has_force_states =
+      ((detail::force_state<F, Scalar>::stateful && Effects_::template has<typename F::effect>) ||
+       ... || false);
+  /// Starts the force elements' internal states at s (their user-set values, e.g. chamber
+  /// pressures, at s's configuration and time). Call update_kinematics(s, w) first.
+  void start_force_states(State& s, const Workspace& w) const { update_force_states<true>(s, w); }
+  /// Stores the force elements' internal states at s after an accepted step (call
+  /// update_kinematics(s, w) first).
+  void commit_force_states(State& s, const Workspace& w) const { update_force_states<false>(s, w); }
 
   /// All of the above at the state's time.
   void evaluate(const State& s, Workspace& w) const {
@@ -486,19 +513,21 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
             e.gravity += body.gravity_potential(kin, gravity);
         },
         std::make_index_sequence<num_bodies>{});
-    if constexpr (Effects_::template has<SpringDampers>)
-      detail::for_each_index(
-          [&](auto k) {
-            constexpr int K = static_cast<int>(decltype(k)::value);
-            using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<F...>>;
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr int K = static_cast<int>(decltype(k)::value);
+          using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<F...>>;
+          if constexpr (std::is_same_v<typename Kind::effect, SpringDampers> &&
+                        Effects_::template has<SpringDampers>) {
             const auto& inst = std::get<K>(forces);
             MarkerEval<Scalar, modes_of<Kind::body_i>> mi;
             MarkerEval<Scalar, modes_of<Kind::body_j>> mj;
             mi.evaluate(inst.marker_i, kinematics<Kind::body_i>(w));
             mj.evaluate(inst.marker_j, kinematics<Kind::body_j>(w));
             e.springs += Kind::energy(inst.params, mi, mj);
-          },
-          std::make_index_sequence<num_forces>{});
+          }
+        },
+        std::make_index_sequence<num_forces>{});
     return e;
   }
 
@@ -571,19 +600,53 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   }
 
   template <int K>
-  void apply_force_element(Workspace& w) const {
+  void apply_force_element(const State& s, Workspace& w) const {
     using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<F...>>;
-    constexpr int bi = Kind::body_i, bj = Kind::body_j;
-    const auto& inst = std::get<static_cast<std::size_t>(K)>(forces);
-    MarkerEval<Scalar, modes_of<bi>> mi;
-    MarkerEval<Scalar, modes_of<bj>> mj;
-    mi.evaluate(inst.marker_i, kinematics<bi>(w));
-    mj.evaluate(inst.marker_j, kinematics<bj>(w));
-    const Vec3<Scalar> f = Kind::force(inst.params, mi, mj);
-    if constexpr (bj >= 0)
-      w.force.template segment<body_nv[bj]>(body_offset[bj]) += mj.row_origin(f).transpose();
-    if constexpr (bi >= 0)
-      w.force.template segment<body_nv[bi]>(body_offset[bi]) -= mi.row_origin(f).transpose();
+    if constexpr (Effects_::template has<typename Kind::effect>) {
+      constexpr int bi = Kind::body_i, bj = Kind::body_j;
+      const auto& inst = std::get<static_cast<std::size_t>(K)>(forces);
+      MarkerEval<Scalar, modes_of<bi>> mi;
+      MarkerEval<Scalar, modes_of<bj>> mj;
+      mi.evaluate(inst.marker_i, kinematics<bi>(w));
+      mj.evaluate(inst.marker_j, kinematics<bj>(w));
+      Vec3<Scalar> f;
+      if constexpr (detail::force_state<Kind, Scalar>::stateful)
+        f = Kind::force(inst.params, std::get<static_cast<std::size_t>(K)>(s.force_states), s.t, mi,
+                        mj);
+      else
+        f = Kind::force(inst.params, mi, mj);
+      if constexpr (bj >= 0)
+        w.force.template segment<body_nv[bj]>(body_offset[bj]) += mj.row_origin(f).transpose();
+      if constexpr (bi >= 0)
+        w.force.template segment<body_nv[bi]>(body_offset[bi]) -= mi.row_origin(f).transpose();
+    }
+    (void)s;
+    (void)w;
+  }
+
+  // Calls Kind::Op (commit or start) on each active stateful force element.
+  template <bool Start>
+  void update_force_states(State& s, const Workspace& w) const {
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr std::size_t K = decltype(k)::value;
+          using Kind = std::tuple_element_t<K, std::tuple<F...>>;
+          if constexpr (detail::force_state<Kind, Scalar>::stateful &&
+                        Effects_::template has<typename Kind::effect>) {
+            const auto& inst = std::get<K>(forces);
+            MarkerEval<Scalar, modes_of<Kind::body_i>> mi;
+            MarkerEval<Scalar, modes_of<Kind::body_j>> mj;
+            mi.evaluate(inst.marker_i, kinematics<Kind::body_i>(w));
+            mj.evaluate(inst.marker_j, kinematics<Kind::body_j>(w));
+            if constexpr (Start)
+              Kind::start(inst.params, std::get<K>(s.force_states), s.t, mi, mj);
+            else
+              Kind::commit(inst.params, std::get<K>(s.force_states), s.t, mi, mj);
+          }
+        },
+        std::make_index_sequence<num_forces>{});
+    (void)s;
+    (void)w;
   }
 };
 

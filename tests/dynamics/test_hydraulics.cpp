@@ -7,6 +7,7 @@
 
 #include <doctest/doctest.h>
 
+#include <flexstress/dynamics/energy_audit.hpp>
 #include <flexstress/dynamics/hydraulic_cylinder.hpp>
 #include <flexstress/dynamics/implicit_integrator.hpp>
 
@@ -33,6 +34,7 @@ using Slide =
 // u, damper c; chamber pressures p1, p2; initial velocity v0.
 struct Run {
   std::vector<double> t, x, v;
+  double energy_residual = 0, energy_change = 0;  ///< the energy audit's max |r| and |E - E0|
 };
 Run slide(double a2, double x0, double u, double c, double p1, double p2, double v0, double h,
           double duration) {
@@ -67,6 +69,8 @@ Run slide(double a2, double x0, double u, double c, double p1, double p2, double
   std::get<0>(s.force_states).p1 = p1;
   std::get<0>(s.force_states).p2 = p2;
   REQUIRE(integ.initialize(s).ok());
+  EnergyAudit<Slide> audit(scene);
+  audit.start(s);
   Run r;
   const int steps = static_cast<int>(std::lround(duration / h));
   for (int i = 0; i < steps; ++i) {
@@ -74,7 +78,10 @@ Run slide(double a2, double x0, double u, double c, double p1, double p2, double
     r.t.push_back(s.t);
     r.x.push_back(s.coordinates<0>().position.z() - kRetracted);
     r.v.push_back(s.v(2));
+    audit.record(s);
   }
+  r.energy_residual = audit.max_abs_residual();
+  r.energy_change = audit.max_energy_change();
   return r;
 }
 
@@ -127,4 +134,14 @@ TEST_CASE("open valve: the slide reaches the load-flow velocity of the valve") {
   CHECK(v_expected > 0.03);  // a real motion: about 4 cm/s
   // It started from rest and got there: moving, not stuck at the initial pressures.
   CHECK(r.x.back() > 0.1 + 0.5 * v_expected);
+}
+
+// The energy audit counts the oil force's work: with a closed valve and no damper, the slide's
+// kinetic energy is exchanged with the oil springs and W follows it.
+TEST_CASE("energy audit of a hydraulic scene: the oil force's work balances the motion") {
+  const double a2 = kBore - kRod, p1 = 50e5, p2 = p1 * kBore / a2;
+  const Run r = slide(a2, 0.25, 0.0, 0.0, p1, p2, 0.05, 1e-4, 0.05);
+  MESSAGE("max |r| " << r.energy_residual << " J of max |E - E0| " << r.energy_change << " J");
+  CHECK(r.energy_change > 0.2);  // 1/2 m v0^2 = 0.25 J goes into the oil and back
+  CHECK(r.energy_residual < 1e-3 * r.energy_change);
 }

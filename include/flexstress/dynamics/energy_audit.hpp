@@ -4,15 +4,17 @@
 //
 //   r(t) = E(t) - E(0) - W(t) + D(t)
 //
-// is zero for the exact motion (the work-energy theorem of a system with ideal joints; Shabana,
-// Dynamics of Multibody Systems, sec. 3.8). The equations of motion M v_dot = Q - B^T lambda with
-// B v + Phi_t = 0 give dE/dt = -lambda^T B v - p_dot^T D p_dot = lambda^T Phi_t - p_dot^T D p_dot:
-// scleronomic joints do no work, drivers and a moving ground do W' = lambda^T Phi_t, and modal
-// damping dissipates D' = p_dot^T D p_dot. W and D are integrated by the trapezoidal rule over
-// each recorded step, so r measures the integrator's energy error (its numerical dissipation, the
-// Newton tolerance, constraint drift) plus the O(h^2) error of that quadrature; both shrink as h
-// is refined. The quadratic velocity terms must be in the scene (without them the scene's own
-// equations do not conserve energy, and the audit says so by a growing r).
+// is zero for the exact motion (W also counts the work of force elements with internal states:
+// a hydraulic cylinder's oil force on the mechanism) (the work-energy theorem of a system with
+// ideal joints; Shabana, Dynamics of Multibody Systems, sec. 3.8). The equations of motion M v_dot
+// = Q - B^T lambda with B v + Phi_t = 0 give dE/dt = -lambda^T B v - p_dot^T D p_dot = lambda^T
+// Phi_t - p_dot^T D p_dot: scleronomic joints do no work, drivers and a moving ground do W' =
+// lambda^T Phi_t, and modal damping dissipates D' = p_dot^T D p_dot. W and D are integrated by the
+// trapezoidal rule over each recorded step, so r measures the integrator's energy error (its
+// numerical dissipation, the Newton tolerance, constraint drift) plus the O(h^2) error of that
+// quadrature; both shrink as h is refined. The quadratic velocity terms must be in the scene
+// (without them the scene's own equations do not conserve energy, and the audit says so by a
+// growing r).
 //
 // Not counted: the work of ExternalForces callbacks, the dissipation of spring-dampers' dampers,
 // and the geometric stiffening forces (a linearized, non-conservative load-dependent stiffness).
@@ -79,6 +81,7 @@ class EnergyAudit {
     scene_->update_kinematics(s, w_);
     scene_->update_constraints(s, w_);
     driver = s.lambda.dot(w_.phi_t);
+    if constexpr (SceneT::has_force_states) driver += force_element_power(s);
     damping = Scalar(0);
     if constexpr (SceneT::Effects_::template has<ModalDamping>) {
       detail::for_each_index(
@@ -91,6 +94,31 @@ class EnergyAudit {
           },
           std::make_index_sequence<SceneT::num_bodies>{});
     }
+  }
+
+  // Power f . (v_j - v_i) of the stateful force elements at their committed state (at s after
+  // an accepted step: no further flow or compression since, so this is the force at s).
+  Scalar force_element_power(const State& s) const {
+    Scalar power = Scalar(0);
+    const auto& forces = scene_->forces;
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr std::size_t K = decltype(k)::value;
+          using Kind = std::tuple_element_t<K, typename SceneT::ForceKinds>;
+          if constexpr (detail::force_state<Kind, Scalar>::stateful &&
+                        SceneT::Effects_::template has<typename Kind::effect>) {
+            const auto& inst = std::get<K>(forces);
+            MarkerEval<Scalar, SceneT::template modes_of<Kind::body_i>> mi;
+            MarkerEval<Scalar, SceneT::template modes_of<Kind::body_j>> mj;
+            mi.evaluate(inst.marker_i, scene_->template kinematics<Kind::body_i>(w_));
+            mj.evaluate(inst.marker_j, scene_->template kinematics<Kind::body_j>(w_));
+            const Vec3<Scalar> f =
+                Kind::force(inst.params, std::get<K>(s.force_states), s.t, mi, mj);
+            power += f.dot(Vec3<Scalar>(mj.origin.velocity - mi.origin.velocity));
+          }
+        },
+        std::make_index_sequence<SceneT::num_forces>{});
+    return power;
   }
 
   const SceneT* scene_;

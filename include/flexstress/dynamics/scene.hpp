@@ -111,6 +111,7 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   using scalar_type = Scalar;
   using Effects_ = Effects<E...>;
   using BodyTuple = std::tuple<B...>;
+  using ForceKinds = std::tuple<F...>;
   static constexpr int num_bodies = sizeof...(B);
   static constexpr int num_joints = sizeof...(J);
   static constexpr int num_forces = sizeof...(F);

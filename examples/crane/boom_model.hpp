@@ -41,6 +41,19 @@ struct CraneSpec {
   /// ends are read between nodes with `interpolation` (linear as in the paper, or Hermite).
   bool attach_between_nodes = false;
   stress::BoundaryInterpolation interpolation = stress::BoundaryInterpolation::linear;
+  /// The hydraulic drive (examples/crane --hydraulic). The paper models its circuit by lumped
+  /// fluid but gives no data and drives its comparison by the stroke; these are our choices for
+  /// a small crane (docs/crane.md).
+  struct Hydraulics {
+    double bore = 0.050, rod = 0.028;             ///< piston and rod diameters (m)
+    double stroke = 0.4, initial_position = 0.1;  ///< piston travel; position at t = 0 (m)
+    double dead_volume = 2e-4;                    ///< per chamber: hoses and clearance (m^3)
+    double bulk_modulus = 1.0e9;                  ///< effective, oil with hoses (Pa)
+    double supply = 160e5, tank = 2e5;            ///< (Pa)
+    double rated_flow = 20.0 / 60000, rated_drop = 35e5;  ///< valve: 20 l/min at 35 bar/edge
+    double rod_side_pressure = 20e5;  ///< p2 at t = 0 (p1 then balances the load)
+    double command_interval = 0.025;  ///< the command table's spacing (s)
+  } hydraulics;
 };
 
 /// The boom as a beam model with the payload as a point mass, and its reduction.

@@ -8,8 +8,11 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
+#include <flexstress/dynamics/hydraulic_cylinder.hpp>
 #include <flexstress/dynamics/implicit_integrator.hpp>
 #include <flexstress/dynamics/joints.hpp>
 #include <flexstress/dynamics/motion_laws.hpp>
@@ -33,16 +36,25 @@ using namespace flexstress;
 
 /// The crane's effects: gravity, the quadratic velocity terms and modal damping of the boom.
 using CraneEffects = Effects<Gravity, QuadraticVelocity, ModalDamping>;
+/// The same with the hydraulic drive instead of the prescribed stroke.
+using CraneHydraulicEffects = Effects<Gravity, QuadraticVelocity, ModalDamping, HydraulicDrive>;
 
 /// N boom modes; StorageLimit chooses fixed-size (default) or dynamic storage (0); Scalar and the
-/// effect list are what the accuracy study varies (bench/accuracy_vs_time).
+/// effect list are what the accuracy study varies (bench/accuracy_vs_time). Bodies: boom (0),
+/// cylinder (1), rod (2). The stroke is prescribed by a driver (joint 4), or, with
+/// HydraulicDrive, the cylinder is a force element fed by its valve.
 template <int N, int StorageLimit = fixed_storage_limit, class Scalar = double,
           class EffectList = CraneEffects>
-using CraneScene =
+using CraneScene = std::conditional_t<
+    EffectList::template has<HydraulicDrive>,
+    Scene<Scalar, Bodies<FFRFBody<N, Scalar>, RigidBodyT<Scalar>, RigidBodyT<Scalar>>,
+          Joints<Revolute<ground, 0>, Universal<ground, 1>, Spherical<0, 2>, Prismatic<1, 2>>,
+          EffectList, ForceElements<HydraulicCylinder<1, 2, TableLaw>>, FixedGround<Scalar>,
+          StorageLimit>,
     Scene<Scalar, Bodies<FFRFBody<N, Scalar>, RigidBodyT<Scalar>, RigidBodyT<Scalar>>,
           Joints<Revolute<ground, 0>, Universal<ground, 1>, Spherical<0, 2>, Prismatic<1, 2>,
                  PrismaticDriver<1, 2, TableLaw>>,
-          EffectList, ForceElements<>, FixedGround<Scalar>, StorageLimit>;
+          EffectList, ForceElements<>, FixedGround<Scalar>, StorageLimit>>;
 
 template <int N, int StorageLimit = fixed_storage_limit, class Scalar = double,
           class EffectList = CraneEffects>
@@ -62,11 +74,9 @@ struct Crane {
   Index toe_line_first = -1, toe_line_count = 0;
 };
 
-/// Builds the crane with stroke table (t, stroke offset), puts it in static equilibrium at
-/// t = 0 and precomputes the sub-model. Fails with the first error.
-template <int N, int StorageLimit = fixed_storage_limit, class Scalar = double,
-          class EffectList = CraneEffects>
-Result<Crane<N, StorageLimit, Scalar, EffectList>> make_crane(
+/// The stroke-driven crane (make_crane without HydraulicDrive).
+template <int N, int StorageLimit, class Scalar, class EffectList>
+Result<Crane<N, StorageLimit, Scalar, EffectList>> make_stroke_crane(
     const CraneSpec& spec, const std::vector<double>& t, const std::vector<double>& stroke_offset) {
   using V3 = Vec3<Scalar>;
   using M3 = Mat3<Scalar>;
@@ -194,6 +204,129 @@ Result<Crane<N, StorageLimit, Scalar, EffectList>> make_crane(
   if (!fused) return fused.error();
   cr.fused.emplace(std::move(*fused));
   return cr;
+}
+
+/// EffectList without HydraulicDrive: the stroke-driven crane the hydraulic one starts from.
+template <class List, class... Kept>
+struct without_hydraulics;
+template <class... Kept>
+struct without_hydraulics<Effects<>, Kept...> {
+  using type = Effects<Kept...>;
+};
+template <class E, class... Rest, class... Kept>
+struct without_hydraulics<Effects<E, Rest...>, Kept...> {
+  using type = typename std::conditional_t<std::is_same_v<E, HydraulicDrive>,
+                                           without_hydraulics<Effects<Rest...>, Kept...>,
+                                           without_hydraulics<Effects<Rest...>, Kept..., E>>::type;
+};
+
+/// The hydraulic crane. The stroke-driven crane held at its initial stroke gives the static
+/// equilibrium and the cylinder force there (the driver's reaction); the cylinder then takes over
+/// with the cap-side pressure balancing that force, and its valve follows a command cycle made
+/// from the stroke cycle by load-flow feedforward at the load at rest (below; docs/crane.md).
+/// Open loop, like an operator's lever: the stroke follows the plan only roughly.
+template <int N, int StorageLimit, class Scalar, class EffectList>
+Result<Crane<N, StorageLimit, Scalar, EffectList>> make_hydraulic_crane(
+    const CraneSpec& spec, const std::vector<double>& t, const std::vector<double>& stroke_offset) {
+  using Base = Crane<N, StorageLimit, Scalar, typename without_hydraulics<EffectList>::type>;
+  auto made =
+      make_stroke_crane<N, StorageLimit, Scalar, typename without_hydraulics<EffectList>::type>(
+          spec, {0.0, 1.0}, {0.0, 0.0});
+  if (!made) return made.error();
+  Base& b = *made;
+  Crane<N, StorageLimit, Scalar, EffectList> cr;
+  cr.spec = spec;
+  auto& sc = cr.scene;
+  sc.bodies = b.scene.bodies;
+  sc.gravity = b.scene.gravity;
+  detail::for_each_index(
+      [&](auto k) {
+        constexpr int K = static_cast<int>(decltype(k)::value);
+        sc.template joint<K>().marker_i = b.scene.template joint<K>().marker_i;
+        sc.template joint<K>().marker_j = b.scene.template joint<K>().marker_j;
+        sc.template joint<K>().params = b.scene.template joint<K>().params;
+      },
+      std::make_index_sequence<4>{});
+  const auto& hs = spec.hydraulics;
+  const double pi = 3.14159265358979323846, l0 = (spec.b - spec.c).norm();
+  const double a1 = pi / 4 * hs.bore * hs.bore, a2 = a1 - pi / 4 * hs.rod * hs.rod;
+  const double gain = hs.rated_flow / std::sqrt(hs.rated_drop);
+  auto& cyl = sc.template force<0>();
+  cyl.marker_i = b.scene.template joint<3>().marker_i;  // the cylinder's origin, at C
+  cyl.marker_j = b.scene.template joint<3>().marker_j;  // the rod's origin, at B
+  auto& hp = cyl.params;
+  hp.bore_area = Scalar(a1);
+  hp.annulus_area = Scalar(a2);
+  hp.stroke = Scalar(hs.stroke);
+  hp.length_retracted = Scalar(l0 - hs.initial_position);
+  hp.dead_volume_cap = hp.dead_volume_rod = Scalar(hs.dead_volume);
+  hp.bulk_modulus = Scalar(hs.bulk_modulus);
+  hp.supply_pressure = Scalar(hs.supply);
+  hp.tank_pressure = Scalar(hs.tank);
+  hp.flow_gain = Scalar(gain);
+  // The driver's reaction: M v_dot = Q - B^T lambda with the driver's row d phi / d r_rod = n
+  // (the cylinder axis), so the cylinder pushes the rod out with F = -lambda.
+  const double force = -double(b.initial.lambda(Base::SceneT::nc - 1));
+  const double p2 = hs.rod_side_pressure, p1 = (force + p2 * a2) / a1;
+  if (!(p1 > hs.tank && p1 < hs.supply))
+    return make_error(ErrorCode::invalid_argument, "hydraulic crane: holding the load takes ",
+                      p1 / 1e5, " bar on the cap side, outside tank (", hs.tank / 1e5,
+                      " bar) to supply (", hs.supply / 1e5, " bar)");
+  auto plan = TableLaw<double>::create(t, stroke_offset);
+  if (!plan) return plan.error();
+  // Steady flow through both valve edges at the load F (Merritt, ch. 5, for a differential
+  // cylinder): extending p1 = ps - (A1 v / K u)^2, p2 = pt + (A2 v / K u)^2 and p1 A1 - p2 A2 = F
+  // give (K u)^2 = (A1^3 + A2^3) v^2 / (ps A1 - pt A2 - F); retracting (supply to the rod side)
+  // (K u)^2 = (A1^3 + A2^3) v^2 / (F - pt A1 + ps A2).
+  const double cubes = a1 * a1 * a1 + a2 * a2 * a2;
+  if (!(hs.supply * a1 - hs.tank * a2 - force > 0 && force - hs.tank * a1 + hs.supply * a2 > 0))
+    return make_error(ErrorCode::invalid_argument, "hydraulic crane: the load ", force,
+                      " N is beyond what the supply pressure can lift or lower");
+  std::vector<double> tc, uc;
+  for (double tk = t.front(); tk < t.back() + 0.5 * hs.command_interval;
+       tk += hs.command_interval) {
+    const double rate = (*plan)(tk).rate;
+    const double margin =
+        rate >= 0 ? hs.supply * a1 - hs.tank * a2 - force : force - hs.tank * a1 + hs.supply * a2;
+    const double u = rate * std::sqrt(cubes / margin) / gain;
+    tc.push_back(tk);
+    uc.push_back(std::clamp(u, -1.0, 1.0));
+  }
+  auto command = TableLaw<Scalar>::create(tc, uc);
+  if (!command) return command.error();
+  hp.command = std::move(*command);
+  cr.initial.q = b.initial.q;
+  cr.initial.t = b.initial.t;
+  std::get<0>(cr.initial.force_states).p1 = Scalar(p1);
+  std::get<0>(cr.initial.force_states).p2 = Scalar(p2);
+  cr.boom = std::move(b.boom);
+  cr.detail = std::move(b.detail);
+  cr.sub = std::move(b.sub);
+  cr.outputs = std::move(b.outputs);
+  cr.boundary_modes = std::move(b.boundary_modes);
+  cr.fused = std::move(b.fused);
+  cr.hot_spot_row = b.hot_spot_row;
+  cr.paper_hot_spot_row = b.paper_hot_spot_row;
+  cr.gauge_04t = b.gauge_04t;
+  cr.gauge_10t = b.gauge_10t;
+  cr.nominal_row = b.nominal_row;
+  cr.toe_line_first = b.toe_line_first;
+  cr.toe_line_count = b.toe_line_count;
+  return cr;
+}
+
+/// Builds the crane with stroke table (t, stroke offset), puts it in static equilibrium at
+/// t = 0 and precomputes the sub-model. Fails with the first error. With HydraulicDrive in the
+/// effect list the stroke table becomes the valve's command cycle (make_hydraulic_crane).
+template <int N, int StorageLimit = fixed_storage_limit, class Scalar = double,
+          class EffectList = CraneEffects>
+Result<Crane<N, StorageLimit, Scalar, EffectList>> make_crane(
+    const CraneSpec& spec, const std::vector<double>& t, const std::vector<double>& stroke_offset) {
+  if constexpr (EffectList::template has<HydraulicDrive>) {
+    return make_hydraulic_crane<N, StorageLimit, Scalar, EffectList>(spec, t, stroke_offset);
+  } else {
+    return make_stroke_crane<N, StorageLimit, Scalar, EffectList>(spec, t, stroke_offset);
+  }
 }
 
 /// The 12 inertia coordinates of the detail (stress/sub_model_inertia.hpp) from the boom frame's

@@ -34,6 +34,7 @@ struct RunOptions {
   double step = 1e-3;
   bool quiet = false, with_inertia = false;
   std::string stroke_file, output = "crane-out";
+  bool hydraulic = false;  ///< the valve-driven cylinder instead of the prescribed stroke
 };
 
 /// Boom mode counts the program is built for (--modes).
@@ -42,12 +43,13 @@ inline constexpr int kSupportedModes[] = {10, 16};
 /// The run with N boom modes. StorageLimit as in Scene: the default (10) mode count uses
 /// fixed-size storage, 16 modes dynamic storage (3-6 % slower per step, docs/performance.md,
 /// and a quarter less compile time for this unit).
-template <int N, int StorageLimit>
+template <int N, int StorageLimit, class EffectList = CraneEffects>
 int run(const RunOptions& o);
 
 // One unit per mode count instantiates run<N>; the others only declare it.
 extern template int run<10, fixed_storage_limit>(const RunOptions&);
 extern template int run<16, 0>(const RunOptions&);
+extern template int run<10, fixed_storage_limit, CraneHydraulicEffects>(const RunOptions&);
 
 namespace detail {
 
@@ -58,8 +60,10 @@ inline double percentile(std::vector<double> v, double q) {
   return v[k];
 }
 
-// The plot of docs/crane.md: stroke and boom angle, hot-spot and nominal stress, gauges.
-inline void write_plot(const std::string& dir) {
+// The plot of docs/crane.md: stroke and boom angle, hot-spot and nominal stress, gauges (or,
+// for a hydraulic run whose chamber pressures are in CSV columns pressure_column and the next,
+// the pressures and the valve command).
+inline void write_plot(const std::string& dir, int pressure_column = 0) {
   const std::string script = dir + "/crane_history.gp";
   std::ofstream gp(script);
   gp << "set terminal pngcairo size 1000,700 font ',10'\n"
@@ -80,9 +84,17 @@ inline void write_plot(const std::string& dir) {
         "'' u 1:5 w l lw 1 t 'hot spot (paper, 4/10 mm)', "
         "'' u 1:9 w l lw 1 t 'hot spot, max along the toe line', "
         "'' u 1:(-$8) w l lw 1 t 'nominal (minus bottom flange)'\n"
-        "set ylabel 'strain (microstrain)'\nset xlabel 'time (s)'\n"
-        "plot f u 1:6 w l lw 2 t 'gauge at 0.4t', '' u 1:7 w l lw 2 t 'gauge at 1.0t'\n"
-        "unset multiplot\n";
+        "set xlabel 'time (s)'\n";
+  if (pressure_column > 0)
+    gp << "set ylabel 'pressure (bar)'\nset y2label 'valve command'\nset y2tics\n"
+          "plot f u 1:"
+       << pressure_column << " w l lw 2 t 'cap side', '' u 1:" << pressure_column + 1
+       << " w l lw 2 t 'rod side', '' u 1:" << pressure_column - 1
+       << " axes x1y2 w l lw 1 t 'valve command'\n";
+  else
+    gp << "set ylabel 'strain (microstrain)'\n"
+          "plot f u 1:6 w l lw 2 t 'gauge at 0.4t', '' u 1:7 w l lw 2 t 'gauge at 1.0t'\n";
+  gp << "unset multiplot\n";
   gp.close();
   if (std::system("command -v gnuplot > /dev/null 2>&1") == 0)
     (void)std::system(("gnuplot '" + script + "'").c_str());
@@ -90,12 +102,13 @@ inline void write_plot(const std::string& dir) {
 
 }  // namespace detail
 
-template <int N, int StorageLimit>
+template <int N, int StorageLimit, class EffectList>
 int run(const RunOptions& o) {
+  constexpr bool hydraulic = EffectList::template has<HydraulicDrive>;
   using Clock = std::chrono::steady_clock;
   using detail::percentile;
   const auto t_setup = Clock::now();
-  auto made = make_crane<N, StorageLimit>(o.spec, o.t, o.ds);
+  auto made = make_crane<N, StorageLimit, double, EffectList>(o.spec, o.t, o.ds);
   if (!made) {
     std::fprintf(stderr, "error: %s\n", made.error().what().c_str());
     return 1;
@@ -103,7 +116,7 @@ int run(const RunOptions& o) {
   auto& cr = *made;
   auto& scene = cr.scene;
   auto s = cr.initial;
-  using Scene = CraneScene<N, StorageLimit>;
+  using Scene = CraneScene<N, StorageLimit, double, EffectList>;
   typename ImplicitIntegrator<Scene>::Settings settings;
   settings.step = o.step;
   ImplicitIntegrator<Scene> integ(scene, settings);
@@ -173,6 +186,7 @@ int run(const RunOptions& o) {
   csv << "time_s,stroke_m,boom_angle_deg,hot_spot_MPa,hot_spot_paper_MPa,gauge_04t_microstrain,"
          "gauge_10t_microstrain,bottom_flange_MPa,toe_line_max_MPa,newton_iterations";
   for (int k = 0; k < N; ++k) csv << ",p" << k;
+  if constexpr (hydraulic) csv << ",valve_command,p_cap_bar,p_rod_bar";
   csv << '\n';
   csv.precision(9);
   const double t_end = o.t.back();
@@ -181,6 +195,8 @@ int run(const RunOptions& o) {
   step_us.reserve(static_cast<std::size_t>(steps));
   recovery_ns.reserve(static_cast<std::size_t>(steps));
   double hot_min = 1e300, hot_max = -1e300, toe_max = -1e300, t_peak = 0;
+  double p_cap_max = -1e300, p_cap_min = 1e300, stroke_max = -1e300;  // hydraulic runs
+  const double l0 = (o.spec.b - o.spec.c).norm();                     // cylinder length at t = 0
   Eigen::Matrix<double, N, 1> p_peak = s.template coordinates<0>().p;
   const bool progress = !o.quiet && ::isatty(STDERR_FILENO);
   long failed = 0;
@@ -214,13 +230,22 @@ int run(const RunOptions& o) {
     }
     hot_min = std::min(hot_min, hot);
     toe_max = std::max(toe_max, line_max);
-    const auto rod = scene.template joint<4>().params.law(s.t);
-    csv << s.t << ',' << rod.value - (o.spec.b - o.spec.c).norm() << ','
-        << boom_angle(s.template coordinates<0>().theta) * 180 / M_PI << ',' << hot << ','
-        << y(cr.paper_hot_spot_row) / 1e6 << ',' << y(cr.gauge_04t) * 1e6 << ','
-        << y(cr.gauge_10t) * 1e6 << ',' << y(cr.nominal_row) / 1e6 << ',' << line_max << ','
+    // The stroke as the bodies have it (cylinder origin at C, rod origin at B).
+    const double stroke =
+        (s.template coordinates<2>().position - s.template coordinates<1>().position).norm() - l0;
+    csv << s.t << ',' << stroke << ',' << boom_angle(s.template coordinates<0>().theta) * 180 / M_PI
+        << ',' << hot << ',' << y(cr.paper_hot_spot_row) / 1e6 << ',' << y(cr.gauge_04t) * 1e6
+        << ',' << y(cr.gauge_10t) * 1e6 << ',' << y(cr.nominal_row) / 1e6 << ',' << line_max << ','
         << integ.statistics().last_iterations;
     for (int k = 0; k < N; ++k) csv << ',' << s.template coordinates<0>().p(k);
+    if constexpr (hydraulic) {
+      const auto& ch = std::get<0>(s.force_states);
+      csv << ',' << scene.template force<0>().params.command(s.t).value << ',' << ch.p1 / 1e5 << ','
+          << ch.p2 / 1e5;
+      p_cap_max = std::max(p_cap_max, ch.p1 / 1e5);
+      p_cap_min = std::min(p_cap_min, ch.p1 / 1e5);
+      stroke_max = std::max(stroke_max, stroke);
+    }
     csv << '\n';
     if (progress && i % 500 == 0) std::fprintf(stderr, "\r  t = %6.2f of %.2f s", s.t, t_end);
   }
@@ -230,13 +255,17 @@ int run(const RunOptions& o) {
   const VectorXd u_peak = cr.sub->solve(cr.boundary_modes.leftCols(N) * p_peak);
   auto fields = fe::standard_fields(cr.sub->mesh(), cr.sub->model().dofs, u_peak);
   if (fields) (void)fe::write_vtu(o.output + "/detail_d_peak.vtu", cr.sub->mesh(), *fields);
-  detail::write_plot(o.output);
+  detail::write_plot(o.output, hydraulic ? 12 + N : 0);  // p_cap_bar: column 12 + N
 
   const double damage = meter->damage(fatigue::CycleClosure::repeating);
   auto life = fatigue::predict_life(damage, t_end - o.t.front());
-  std::printf("crane: FFRF boom with %d modes, %zu-brick sub-model at detail D, %s cycle of %g s\n",
-              N, cr.detail.mesh.hexes().size(), o.stroke_file.empty() ? "synthetic" : "user",
-              t_end - o.t.front());
+  std::printf(
+      "crane: FFRF boom with %d modes, %zu-brick sub-model at detail D, %s cycle of %g s%s\n", N,
+      cr.detail.mesh.hexes().size(), o.stroke_file.empty() ? "synthetic" : "user",
+      t_end - o.t.front(), hydraulic ? ", hydraulic drive (valve commands from the cycle)" : "");
+  if constexpr (hydraulic)
+    std::printf("  hydraulics: cap side %.1f to %.1f bar, largest stroke %.4f m (planned %.4f m)\n",
+                p_cap_min, p_cap_max, stroke_max, *std::max_element(o.ds.begin(), o.ds.end()));
   std::printf(
       "  at rest: bottom flange %.2f MPa (beam theory M c / I: %.2f), hot spot %.2f MPa "
       "(%.3f x nominal)\n",
@@ -271,6 +300,11 @@ int run(const RunOptions& o) {
   std::printf("damping_dissipated_J: %.6g\n", audit.dissipated());
   std::printf("energy_balance_J: %.6g\n", audit.max_abs_residual());
   std::printf("energy_balance_rel: %.6g\n", audit.max_abs_residual() / audit.max_energy_change());
+  if constexpr (hydraulic) {
+    std::printf("hydraulic_p_cap_max_bar: %.3f\n", p_cap_max);
+    std::printf("hydraulic_p_cap_min_bar: %.3f\n", p_cap_min);
+    std::printf("hydraulic_stroke_max_m: %.5f\n", stroke_max);
+  }
   if (inertia) std::printf("submodel_inertia_hotspot_max_MPa: %.4f\n", inertia_hot_max);
   return failed ? 1 : 0;
 }

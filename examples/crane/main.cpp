@@ -26,6 +26,9 @@ const char* kUsage =
     "                   fixed-interface; 2.4 % off the converged hot-spot history) or 16\n"
     "                   (within 0.1 %, docs/accuracy-vs-time.md)\n"
     "  --density D      sub-model mesh density (default 1.0: 1792 bricks)\n"
+    "  --hydraulic      drive the cylinder by its valve (lumped-fluid hydraulics, the\n"
+    "                   chamber pressures solved in the implicit step) with commands made\n"
+    "                   from the stroke cycle, instead of prescribing the stroke; 10 modes\n"
     "  --submodel-inertia  add the detail's own weight and inertia to its stresses (the\n"
     "                   paper leaves it out; off by default)\n"
     "  --output DIR     output folder (default crane-out)\n"
@@ -88,6 +91,10 @@ int main(int argc, char** argv) {
       o.quiet = true;
       continue;
     }
+    if (key == "--hydraulic") {
+      o.hydraulic = true;
+      continue;
+    }
     if (key == "--submodel-inertia") {
       o.with_inertia = true;
       continue;
@@ -139,6 +146,13 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  if (o.hydraulic) {
+    if (modes != 10) {
+      std::fprintf(stderr, "error: --hydraulic is built for the 10-mode boom only\n");
+      return 2;
+    }
+    return crane::run<10, crane::fixed_storage_limit, crane::CraneHydraulicEffects>(o);
+  }
   switch (static_cast<int>(modes)) {
     case 10: return crane::run<10, crane::fixed_storage_limit>(o);
     case 16: return crane::run<16, 0>(o);

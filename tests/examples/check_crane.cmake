@@ -3,7 +3,9 @@
 # 2.9 kNm at the detail, sigma = M c / I), a hot spot above the nominal stress, finite results,
 # determinism (two runs write bit-identical histories), the energy balance of the work cycle
 # (work-energy theorem: |E - E0 - W_driver + D_damping| at most 1e-3 of max |E - E0|, and
-# smaller at h = 1 ms than at 2 ms), the other mode counts, and a bad option's message.
+# smaller at h = 1 ms than at 2 ms), the other mode counts, the hydraulic drive (its stroke
+# within 10 % of the planned 0.2 m lift, its energy balance with the oil force's work), and bad
+# options' messages.
 #   cmake -DCRANE=<exe> -DOUT=<dir> -P check_crane.cmake
 foreach(run 1 2)
   execute_process(COMMAND "${CRANE}" --quiet --output "${OUT}/run${run}"
@@ -81,4 +83,16 @@ endforeach()
 execute_process(COMMAND "${CRANE}" --modes 7 RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE err)
 if(rc EQUAL 0 OR NOT err MATCHES "--modes")
   message(FATAL_ERROR "--modes 7 should fail naming the option (exit ${rc}): ${err}")
+endif()
+run_crane(hydraulic --hydraulic)
+key(steps steps)
+key(energy_balance_rel balance)
+key(hydraulic_stroke_max_m lift)
+if(NOT steps EQUAL 11000 OR NOT balance LESS 1e-3 OR lift LESS 0.18 OR lift GREATER 0.22)
+  message(FATAL_ERROR "--hydraulic: ${steps} steps, energy balance ${balance}, lift ${lift} m")
+endif()
+execute_process(COMMAND "${CRANE}" --hydraulic --modes 16 RESULT_VARIABLE rc OUTPUT_VARIABLE o
+                ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "--hydraulic")
+  message(FATAL_ERROR "--hydraulic --modes 16 should fail naming the option (exit ${rc}): ${err}")
 endif()

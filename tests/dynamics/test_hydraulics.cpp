@@ -3,6 +3,7 @@
 // Watton, Fluid Power Systems, 1989, ch. 4): a mass on a cylinder slides along a prismatic
 // joint, pushed by the oil and, in the second case, braked by a viscous damper.
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -144,4 +145,28 @@ TEST_CASE("energy audit of a hydraulic scene: the oil force's work balances the 
   MESSAGE("max |r| " << r.energy_residual << " J of max |E - E0| " << r.energy_change << " J");
   CHECK(r.energy_change > 0.2);  // 1/2 m v0^2 = 0.25 J goes into the oil and back
   CHECK(r.energy_residual < 1e-3 * r.energy_change);
+}
+
+// Bad parameters are reported by initialize(), naming the element and the parameter, instead of
+// dividing by a zero chamber volume inside the step.
+TEST_CASE("a hydraulic cylinder with bad parameters is refused at initialize") {
+  Slide scene;
+  scene.body<0>() = RigidBody::rigid(kMass, Vector3d::Zero(), Matrix3d::Identity());
+  scene.joint<0>().marker_i = fixed_marker<double>(Vector3d::Zero());
+  scene.joint<0>().marker_j = make_marker(scene.body<0>(), -1, Vector3d::Zero());
+  auto& hp = scene.force<0>().params;
+  hp.bore_area = hp.annulus_area = kBore;
+  hp.stroke = kStroke;
+  hp.dead_volume_cap = kDead;  // the rod side's is left at 0
+  hp.supply_pressure = kSupply;
+  ImplicitIntegrator<Slide> integ(scene);
+  Slide::State s;
+  s.coordinates<0>().position = Vector3d(0, 0, 0.3);
+  const Status st = integ.initialize(s);
+  REQUIRE_FALSE(st.ok());
+  MESSAGE(st.error().what());
+  CHECK(st.error().what().find("force element 0") != std::string::npos);
+  CHECK(st.error().what().find("dead volume") != std::string::npos);
+  hp.dead_volume_rod = kDead;  // fixed: it starts
+  CHECK(integ.initialize(s).ok());
 }

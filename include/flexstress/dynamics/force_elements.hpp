@@ -26,6 +26,14 @@ struct SpringDamper {
     Scalar rest_length = Scalar(0);
     Scalar preload = Scalar(0);
   };
+  /// The name of the first parameter out of its domain, or nullptr.
+  template <class Scalar>
+  static const char* check(const Params<Scalar>& p) {
+    if (!std::isfinite(double(p.stiffness)) || !std::isfinite(double(p.damping)) ||
+        !std::isfinite(double(p.rest_length)) || !std::isfinite(double(p.preload)))
+      return "stiffness, damping, rest_length and preload must be finite";
+    return nullptr;
+  }
   /// Force on marker j's origin (global); marker i gets the opposite.
   template <class Scalar, int NI, int NJ>
   static Vec3<Scalar> force(const Params<Scalar>& p, const MarkerEval<Scalar, NI>& i,

@@ -70,6 +70,27 @@ struct HydraulicCylinder {
     Scalar t = Scalar(0);
   };
 
+  /// Checks the parameters (Scene::check_effect_data, so initialize() reports them): the name of
+  /// the first one out of its domain, or nullptr.
+  template <class Scalar>
+  static const char* check(const Params<Scalar>& p) {
+    const auto positive = [](Scalar v) { return std::isfinite(double(v)) && v > Scalar(0); };
+    if (!positive(p.bore_area)) return "bore_area must be positive";
+    if (!positive(p.annulus_area)) return "annulus_area must be positive";
+    if (!positive(p.stroke)) return "stroke must be positive";
+    if (!positive(p.dead_volume_cap) || !positive(p.dead_volume_rod))
+      return "dead volumes must be positive (a chamber never empties)";
+    if (!positive(p.bulk_modulus)) return "bulk_modulus must be positive";
+    if (!positive(p.transition_pressure)) return "transition_pressure must be positive";
+    if (!std::isfinite(double(p.flow_gain)) || p.flow_gain < Scalar(0))
+      return "flow_gain must be finite and not negative";
+    if (!std::isfinite(double(p.tank_pressure)) || !std::isfinite(double(p.supply_pressure)) ||
+        !(p.supply_pressure > p.tank_pressure))
+      return "supply_pressure must be above tank_pressure";
+    if (!std::isfinite(double(p.length_retracted))) return "length_retracted must be finite";
+    return nullptr;
+  }
+
   /// sign(dp) sqrt(|dp|), laminar below the transition drop: dp / (|dp| + c)^(1/2) has slope
   /// c^(-1/2) at 0 and is within 0.5 % of the square root for |dp| > 100 c.
   template <class Scalar>

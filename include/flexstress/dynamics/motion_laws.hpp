@@ -89,7 +89,9 @@ class TableLaw {
     return law;
   }
 
+  /// A default-constructed (empty) table is s = 0 at all times.
   MotionValue<Scalar> operator()(Scalar time) const {
+    if (t_.empty()) return {};
     const double tt = static_cast<double>(time);
     if (tt <= t_.front()) return {static_cast<Scalar>(s_.front()), Scalar(0), Scalar(0)};
     if (tt >= t_.back()) return {static_cast<Scalar>(s_.back()), Scalar(0), Scalar(0)};

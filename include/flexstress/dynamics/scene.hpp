@@ -439,7 +439,9 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   }
 
   /// Checks that every flexible body has the data the scene's effects need (the geometric
-  /// stiffness of GeometricStiffening); the integrators' initialize() calls it.
+  /// stiffness of GeometricStiffening) and that the active force elements' parameters are in
+  /// their domains (naming the element and the parameter); the integrators' initialize() calls
+  /// it.
   Status check_effect_data() const {
     Status status = Status::success();
     detail::for_each_index(
@@ -452,6 +454,16 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
                                   "geometric stiffness (BodyModel::set_geometric_stiffness)");
         },
         std::make_index_sequence<num_bodies>{});
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr std::size_t K = decltype(k)::value;
+          using Kind = std::tuple_element_t<K, std::tuple<F...>>;
+          if constexpr (Effects_::template has<typename Kind::effect>)
+            if (status.ok())
+              if (const char* bad = Kind::check(std::get<K>(forces).params))
+                status = make_error(ErrorCode::invalid_argument, "force element ", K, ": ", bad);
+        },
+        std::make_index_sequence<num_forces>{});
     return status;
   }
 

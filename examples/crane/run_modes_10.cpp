@@ -2,3 +2,7 @@
 #include "crane_run.hpp"
 
 template int crane::run<10, crane::fixed_storage_limit>(const crane::RunOptions&);
+// The stroke-driven crane the hydraulic one starts from (run_hydraulic_10.cpp uses this one).
+template crane::Result<crane::Crane<10, crane::fixed_storage_limit, double, crane::CraneEffects>>
+crane::make_stroke_crane<10, crane::fixed_storage_limit, double, crane::CraneEffects>(
+    const crane::CraneSpec&, const std::vector<double>&, const std::vector<double>&);

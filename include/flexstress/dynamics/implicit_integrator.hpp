@@ -106,7 +106,8 @@ class ImplicitIntegrator {
     /// Real-time budget: a step that reaches max_iterations with a finite state keeps its last
     /// iterate instead of being undone (counted in Statistics::over_budget), so each step costs
     /// at most max_iterations corrections. The accuracy this costs is measured in
-    /// bench/accuracy_vs_time.
+    /// bench/accuracy_vs_time. It is also how a scene passes singular configurations, where
+    /// the multipliers are undefined and their update stalls (docs/dynamics.md, IFToMM A02).
     bool accept_at_iteration_limit = false;
   };
 

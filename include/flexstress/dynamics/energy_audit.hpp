@@ -107,14 +107,10 @@ class EnergyAudit {
           using Kind = std::tuple_element_t<K, typename SceneT::ForceKinds>;
           if constexpr (detail::force_state<Kind, Scalar>::stateful &&
                         SceneT::Effects_::template has<typename Kind::effect>) {
-            const auto& inst = std::get<K>(forces);
-            MarkerEval<Scalar, SceneT::template modes_of<Kind::body_i>> mi;
-            MarkerEval<Scalar, SceneT::template modes_of<Kind::body_j>> mj;
-            mi.evaluate(inst.marker_i, scene_->template kinematics<Kind::body_i>(w_));
-            mj.evaluate(inst.marker_j, scene_->template kinematics<Kind::body_j>(w_));
+            const auto m = scene_->template force_markers<static_cast<int>(K)>(w_);
             const Vec3<Scalar> f =
-                Kind::force(inst.params, std::get<K>(s.force_states), s.t, mi, mj);
-            power += f.dot(Vec3<Scalar>(mj.origin.velocity - mi.origin.velocity));
+                Kind::force(std::get<K>(forces).params, std::get<K>(s.force_states), s.t, m.i, m.j);
+            power += f.dot(Vec3<Scalar>(m.j.origin.velocity - m.i.origin.velocity));
           }
         },
         std::make_index_sequence<SceneT::num_forces>{});

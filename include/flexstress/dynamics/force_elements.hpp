@@ -6,12 +6,31 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 #include "flexstress/core/types.hpp"
 #include "flexstress/dynamics/effects.hpp"
 #include "flexstress/dynamics/marker.hpp"
 
 namespace flexstress {
+
+namespace detail {
+
+/// Internal state of a force element kind: its State<Scalar> if it has one (a hydraulic
+/// cylinder's chamber pressures), else nothing.
+struct NoForceState {};
+template <class Kind, class Scalar, class = void>
+struct force_state {
+  using type = NoForceState;
+  static constexpr bool stateful = false;
+};
+template <class Kind, class Scalar>
+struct force_state<Kind, Scalar, std::void_t<typename Kind::template State<Scalar>>> {
+  using type = typename Kind::template State<Scalar>;
+  static constexpr bool stateful = true;
+};
+
+}  // namespace detail
 
 /// Spring-damper between the origins of marker i (body I) and marker j (body J):
 /// tension f = k (L - L0) + c L_dot (+ preload), acting along the line.

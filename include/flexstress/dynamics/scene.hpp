@@ -66,20 +66,6 @@ struct modes_of<K, Tuple, true> {
   static constexpr int value = 0;
 };
 
-/// Internal state of a force element kind: its State<Scalar> if it has one (a hydraulic
-/// cylinder's chamber pressures), else nothing.
-struct NoForceState {};
-template <class Kind, class Scalar, class = void>
-struct force_state {
-  using type = NoForceState;
-  static constexpr bool stateful = false;
-};
-template <class Kind, class Scalar>
-struct force_state<Kind, Scalar, std::void_t<typename Kind::template State<Scalar>>> {
-  using type = typename Kind::template State<Scalar>;
-  static constexpr bool stateful = true;
-};
-
 template <class F, std::size_t... I>
 constexpr void for_each_index(F&& f, std::index_sequence<I...>) {
   (f(std::integral_constant<std::size_t, I>{}), ...);
@@ -532,16 +518,29 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
           using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<F...>>;
           if constexpr (std::is_same_v<typename Kind::effect, SpringDampers> &&
                         Effects_::template has<SpringDampers>) {
-            const auto& inst = std::get<K>(forces);
-            MarkerEval<Scalar, modes_of<Kind::body_i>> mi;
-            MarkerEval<Scalar, modes_of<Kind::body_j>> mj;
-            mi.evaluate(inst.marker_i, kinematics<Kind::body_i>(w));
-            mj.evaluate(inst.marker_j, kinematics<Kind::body_j>(w));
-            e.springs += Kind::energy(inst.params, mi, mj);
+            const auto m = force_markers<K>(w);
+            e.springs += Kind::energy(std::get<K>(forces).params, m.i, m.j);
           }
         },
         std::make_index_sequence<num_forces>{});
     return e;
+  }
+
+  /// The two markers of force element K, evaluated at the workspace's kinematics.
+  template <int K>
+  struct ForceMarkers {
+    using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<F...>>;
+    MarkerEval<Scalar, modes_of<Kind::body_i>> i;
+    MarkerEval<Scalar, modes_of<Kind::body_j>> j;
+  };
+  template <int K>
+  ForceMarkers<K> force_markers(const Workspace& w) const {
+    using Kind = typename ForceMarkers<K>::Kind;
+    const auto& inst = std::get<static_cast<std::size_t>(K)>(forces);
+    ForceMarkers<K> m;
+    m.i.evaluate(inst.marker_i, kinematics<Kind::body_i>(w));
+    m.j.evaluate(inst.marker_j, kinematics<Kind::body_j>(w));
+    return m;
   }
 
   /// Kinematics of body K (the ground for K = -1) in the workspace.
@@ -617,21 +616,18 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
     using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<F...>>;
     if constexpr (Effects_::template has<typename Kind::effect>) {
       constexpr int bi = Kind::body_i, bj = Kind::body_j;
-      const auto& inst = std::get<static_cast<std::size_t>(K)>(forces);
-      MarkerEval<Scalar, modes_of<bi>> mi;
-      MarkerEval<Scalar, modes_of<bj>> mj;
-      mi.evaluate(inst.marker_i, kinematics<bi>(w));
-      mj.evaluate(inst.marker_j, kinematics<bj>(w));
+      const auto& params = std::get<static_cast<std::size_t>(K)>(forces).params;
+      const auto m = force_markers<K>(w);
       Vec3<Scalar> f;
       if constexpr (detail::force_state<Kind, Scalar>::stateful)
-        f = Kind::force(inst.params, std::get<static_cast<std::size_t>(K)>(s.force_states), s.t, mi,
-                        mj);
+        f = Kind::force(params, std::get<static_cast<std::size_t>(K)>(s.force_states), s.t, m.i,
+                        m.j);
       else
-        f = Kind::force(inst.params, mi, mj);
+        f = Kind::force(params, m.i, m.j);
       if constexpr (bj >= 0)
-        w.force.template segment<body_nv[bj]>(body_offset[bj]) += mj.row_origin(f).transpose();
+        w.force.template segment<body_nv[bj]>(body_offset[bj]) += m.j.row_origin(f).transpose();
       if constexpr (bi >= 0)
-        w.force.template segment<body_nv[bi]>(body_offset[bi]) -= mi.row_origin(f).transpose();
+        w.force.template segment<body_nv[bi]>(body_offset[bi]) -= m.i.row_origin(f).transpose();
     }
     (void)s;
     (void)w;
@@ -646,15 +642,12 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
           using Kind = std::tuple_element_t<K, std::tuple<F...>>;
           if constexpr (detail::force_state<Kind, Scalar>::stateful &&
                         Effects_::template has<typename Kind::effect>) {
-            const auto& inst = std::get<K>(forces);
-            MarkerEval<Scalar, modes_of<Kind::body_i>> mi;
-            MarkerEval<Scalar, modes_of<Kind::body_j>> mj;
-            mi.evaluate(inst.marker_i, kinematics<Kind::body_i>(w));
-            mj.evaluate(inst.marker_j, kinematics<Kind::body_j>(w));
+            const auto& params = std::get<K>(forces).params;
+            const auto m = force_markers<static_cast<int>(K)>(w);
             if constexpr (Start)
-              Kind::start(inst.params, std::get<K>(s.force_states), s.t, mi, mj);
+              Kind::start(params, std::get<K>(s.force_states), s.t, m.i, m.j);
             else
-              Kind::commit(inst.params, std::get<K>(s.force_states), s.t, mi, mj);
+              Kind::commit(params, std::get<K>(s.force_states), s.t, m.i, m.j);
           }
         },
         std::make_index_sequence<num_forces>{});

@@ -35,6 +35,7 @@
 #include "flexstress/fe/stress_recovery.hpp"
 #include "flexstress/fe/vtk_writer.hpp"
 
+#include "flexstress/reduction/body_stress_modes.hpp"
 #include "flexstress/reduction/component_modes.hpp"
 #include "flexstress/reduction/inertia_integrals.hpp"
 #include "flexstress/reduction/interface.hpp"

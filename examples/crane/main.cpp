@@ -37,7 +37,10 @@ const char* kUsage =
     "Each mode count is compiled in (a compile-time size); the accuracy study\n"
     "(bench/accuracy_vs_time) varies it at run time.\n";
 
-bool read_stroke_csv(const std::string& path, std::vector<double>& t, std::vector<double>& s) {
+// Rows 'time,stroke' (s, m; stroke = extension from the start), within the cylinder: the piston
+// starts `start` out of a cylinder of travel `travel` (CraneSpec::hydraulics).
+bool read_stroke_csv(const std::string& path, double start, double travel, std::vector<double>& t,
+                     std::vector<double>& s) {
   std::ifstream in(path);
   if (!in) {
     std::fprintf(stderr, "error: cannot open stroke file '%s'\n", path.c_str());
@@ -47,13 +50,21 @@ bool read_stroke_csv(const std::string& path, std::vector<double>& t, std::vecto
   int row = 0;
   while (std::getline(in, line)) {
     ++row;
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream ls(line);
+    std::string fields = line;
+    std::replace(fields.begin(), fields.end(), ',', ' ');
+    std::istringstream ls(fields);
     double a = 0, b = 0;
     if (!(ls >> a >> b)) {
       if (t.empty() && line.find_first_of("0123456789") == std::string::npos) continue;  // header
       std::fprintf(stderr, "error: %s line %d: expected 'time,stroke', got '%s'\n", path.c_str(),
                    row, line.c_str());
+      return false;
+    }
+    if (!(b >= -start && b <= travel - start)) {
+      std::fprintf(stderr,
+                   "error: %s line %d: stroke %g m takes the piston out of the cylinder (travel "
+                   "%g m, %g m out at the start: the stroke may range from %g to %g m)\n",
+                   path.c_str(), row, b, travel, start, -start, travel - start);
       return false;
     }
     t.push_back(a);
@@ -142,7 +153,8 @@ int main(int argc, char** argv) {
   }
   if (o.stroke_file.empty())
     crane::synthetic_cycle(o.t, o.ds);
-  else if (!read_stroke_csv(o.stroke_file, o.t, o.ds))
+  else if (!read_stroke_csv(o.stroke_file, spec.hydraulics.initial_position, spec.hydraulics.stroke,
+                            o.t, o.ds))
     return 1;
   std::error_code dir_error;
   std::filesystem::create_directories(o.output, dir_error);

@@ -100,3 +100,28 @@ if(EXTRA_MODES)
     message(FATAL_ERROR "--hydraulic --modes ${modes} should fail naming the option (exit ${rc}): ${err}")
   endif()
 endif()
+
+# Bad flags and bad stroke files: a message naming the flag or the line, a non-zero exit.
+function(expect_refusal pattern)
+  execute_process(COMMAND "${CRANE}" --quiet --output "${OUT}/refused" ${ARGN}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT err MATCHES "${pattern}")
+    message(FATAL_ERROR "crane ${ARGN} should fail with '${pattern}' (exit ${rc}): ${err}")
+  endif()
+endfunction()
+expect_refusal("unknown option '--speed'" --speed 2)
+expect_refusal("--payload expects a number, got 'heavy'" --payload heavy)
+expect_refusal("bad value '-5' for --payload" --payload -5)
+expect_refusal("bad value '0' for --step" --step 0)
+expect_refusal("--density needs a value" --density)
+expect_refusal("cannot open stroke file" --stroke "${OUT}/no-such-cycle.csv")
+file(WRITE "${OUT}/bad-cycle.csv" "time,stroke\n0,0\n1,0.1\n2,oops\n")
+expect_refusal("bad-cycle.csv line 4: expected 'time,stroke', got '2,oops'"
+               --stroke "${OUT}/bad-cycle.csv")
+file(WRITE "${OUT}/short-cycle.csv" "0,0\n")
+expect_refusal("short-cycle.csv: needs at least two rows" --stroke "${OUT}/short-cycle.csv")
+file(WRITE "${OUT}/long-cycle.csv" "0,0\n1,0.1\n2,5\n")
+expect_refusal("long-cycle.csv line 3: stroke 5 m takes the piston out of the cylinder"
+               --stroke "${OUT}/long-cycle.csv")
+file(WRITE "${OUT}/backwards-cycle.csv" "0,0\n1,0.1\n0.5,0.2\n")
+expect_refusal("time at row 3 \\(0.5\\) does not increase" --stroke "${OUT}/backwards-cycle.csv")

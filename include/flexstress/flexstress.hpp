@@ -47,6 +47,7 @@
 
 #include "flexstress/dynamics/body_model.hpp"
 #include "flexstress/dynamics/body_vector.hpp"
+#include "flexstress/dynamics/checkpoint.hpp"
 #include "flexstress/dynamics/constrained_accelerations.hpp"
 #include "flexstress/dynamics/constraint_primitives.hpp"
 #include "flexstress/dynamics/effects.hpp"

@@ -8,6 +8,7 @@
 
 #include <doctest/doctest.h>
 
+#include <flexstress/dynamics/checkpoint.hpp>
 #include <flexstress/dynamics/energy_audit.hpp>
 #include <flexstress/dynamics/hydraulic_cylinder.hpp>
 #include <flexstress/dynamics/implicit_integrator.hpp>
@@ -37,8 +38,7 @@ struct Run {
   std::vector<double> t, x, v;
   double energy_residual = 0, energy_change = 0;  ///< the energy audit's max |r| and |E - E0|
 };
-Run slide(double a2, double x0, double u, double c, double p1, double p2, double v0, double h,
-          double duration) {
+Slide make_slide(double a2, double u, double c) {
   Slide scene;
   scene.body<0>() = RigidBody::rigid(kMass, Vector3d::Zero(), Matrix3d::Identity());
   scene.joint<0>().marker_i = fixed_marker<double>(Vector3d::Zero());
@@ -61,6 +61,12 @@ Run slide(double a2, double x0, double u, double c, double p1, double p2, double
   damper.marker_i = cyl.marker_i;
   damper.marker_j = cyl.marker_j;
   damper.params.damping = c;
+  return scene;
+}
+
+Run slide(double a2, double x0, double u, double c, double p1, double p2, double v0, double h,
+          double duration) {
+  const Slide scene = make_slide(a2, u, c);
   ImplicitIntegrator<Slide>::Settings settings;
   settings.step = h;
   ImplicitIntegrator<Slide> integ(scene, settings);
@@ -169,4 +175,37 @@ TEST_CASE("a hydraulic cylinder with bad parameters is refused at initialize") {
   CHECK(st.error().what().find("dead volume") != std::string::npos);
   hp.dead_volume_rod = kDead;  // fixed: it starts
   CHECK(integ.initialize(s).ok());
+}
+
+// Checkpoints carry the chamber pressures (force-element states) with the rest: a run stopped
+// mid-stroke and restored ends bit-identical to one that never stopped.
+TEST_CASE("checkpoint of a hydraulic scene restores the chamber pressures bit-identically") {
+  const Slide scene = make_slide(kBore - kRod, 0.3, 2000.0);
+  ImplicitIntegrator<Slide>::Settings settings;
+  settings.step = 1e-4;
+  ImplicitIntegrator<Slide> straight(scene, settings);
+  Slide::State a;
+  a.coordinates<0>().position = Vector3d(0, 0, kRetracted + 0.2);
+  std::get<0>(a.force_states).p1 = 50e5;
+  std::get<0>(a.force_states).p2 = 50e5 * kBore / (kBore - kRod);
+  REQUIRE(straight.initialize(a).ok());
+  std::vector<unsigned char> bytes;
+  for (int i = 0; i < 600; ++i) {
+    if (i == 200) bytes = *save_checkpoint(a, straight);
+    REQUIRE(straight.step(a) == StepStatus::ok);
+  }
+  ImplicitIntegrator<Slide> resumed(scene, settings);
+  Slide::State b;
+  REQUIRE(restore_checkpoint(bytes.data(), bytes.size(), b, resumed).ok());
+  for (int i = 200; i < 600; ++i) REQUIRE(resumed.step(b) == StepStatus::ok);
+  const auto& pa = std::get<0>(a.force_states);
+  const auto& pb = std::get<0>(b.force_states);
+  MESSAGE("after 60 ms: x = " << a.coordinates<0>().position.z() - kRetracted << " m, p1 = "
+                              << pa.p1 * 1e-5 << " bar, p2 = " << pa.p2 * 1e-5 << " bar");
+  CHECK(a.coordinates<0>().position.z() > kRetracted + 0.2);  // the open valve moved it
+  CHECK(pb.p1 == pa.p1);
+  CHECK(pb.p2 == pa.p2);
+  CHECK(b.coordinates<0>().position == a.coordinates<0>().position);
+  CHECK(b.v == a.v);
+  CHECK(b.lambda == a.lambda);
 }

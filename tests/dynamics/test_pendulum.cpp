@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <flexstress/dynamics/checkpoint.hpp>
 #include <flexstress/dynamics/implicit_integrator.hpp>
 
 using namespace flexstress;
@@ -114,4 +115,94 @@ TEST_CASE("a Newton budget keeps the step's last iterate instead of failing") {
     CHECK(s.coordinates<0>().theta.allFinite());
     CHECK(s.v.allFinite());
   }
+}
+
+TEST_CASE("bad scene input: a non-finite state and a bad motion table get errors naming them") {
+  const Pendulum scene = make_pendulum();
+  ImplicitIntegrator<Pendulum> integrator(scene);
+  Pendulum::State s;
+  s.coordinates<0>().position = Vector3d(1, std::nan(""), 0);
+  const Status st = integrator.initialize(s);
+  REQUIRE_FALSE(st.ok());
+  MESSAGE(st.error().what());
+  CHECK(st.error().code == ErrorCode::invalid_argument);
+  CHECK(st.error().what().find("body 0 has a coordinate or velocity that is not finite") !=
+        std::string::npos);
+  CHECK(max_abs(Vector3d(1, std::nan(""), 0)) != max_abs(Vector3d(1, std::nan(""), 0)));  // NaN
+  // A step from a state that was never assembled reports it instead of producing NaN.
+  Pendulum::State nan_velocity;
+  nan_velocity.coordinates<0>().position = Vector3d(1, 0, 0);
+  REQUIRE(integrator.initialize(nan_velocity).ok());
+  nan_velocity.v(1) = std::nan("");
+  CHECK(integrator.step(nan_velocity) == StepStatus::non_finite_state);
+  CHECK(nan_velocity.t == 0.0);  // the step was undone
+  auto one_row = TableLaw<double>::create({0.0}, {0.0});
+  REQUIRE_FALSE(one_row.ok());
+  CHECK(one_row.error().message == "table law: needs at least two rows, got 1");
+  auto backwards = TableLaw<double>::create({0.0, 1.0, 0.5}, {0.0, 0.1, 0.2});
+  REQUIRE_FALSE(backwards.ok());
+  CHECK(backwards.error().message.find("time at row 3 (0.5) does not increase") !=
+        std::string::npos);
+}
+
+TEST_CASE("checkpoint: a restored run continues bit-identically; damaged ones are refused") {
+  // Reference: the run that never stopped. The modified Newton reuses its factorization across
+  // steps, so the restored integrator must carry it over exactly, not just the state.
+  const Pendulum scene = make_pendulum();
+  ImplicitIntegrator<Pendulum>::Settings settings;
+  settings.step = 5e-3;
+  auto start = [&] {
+    Pendulum::State s;
+    s.coordinates<0>().position = Vector3d(1, 0, 0);
+    return s;
+  };
+  ImplicitIntegrator<Pendulum> straight(scene, settings);
+  Pendulum::State a = start();
+  REQUIRE(straight.initialize(a).ok());
+  std::vector<unsigned char> bytes;
+  for (int i = 0; i < 400; ++i) {
+    if (i == 150) {
+      auto saved = save_checkpoint(a, straight);
+      REQUIRE(saved.ok());
+      bytes = *saved;
+    }
+    REQUIRE(straight.step(a) == StepStatus::ok);
+  }
+  ImplicitIntegrator<Pendulum> resumed(scene, settings);
+  Pendulum::State b;  // a fresh state: everything comes from the checkpoint
+  REQUIRE(restore_checkpoint(bytes.data(), bytes.size(), b, resumed).ok());
+  for (int i = 150; i < 400; ++i) REQUIRE(resumed.step(b) == StepStatus::ok);
+  CHECK(b.t == a.t);
+  CHECK(b.coordinates<0>().position == a.coordinates<0>().position);
+  CHECK(b.coordinates<0>().theta == a.coordinates<0>().theta);
+  CHECK(b.v == a.v);
+  CHECK(b.v_dot == a.v_dot);
+  CHECK(b.lambda == a.lambda);
+  CHECK(resumed.statistics().iterations == straight.statistics().iterations);
+  CHECK(resumed.statistics().factorizations == straight.statistics().factorizations);
+
+  auto error_of = [&](std::vector<unsigned char> damaged, ImplicitIntegrator<Pendulum>& integ) {
+    Pendulum::State s = start();
+    const Pendulum::State before = s;
+    const Status st = restore_checkpoint(damaged.data(), damaged.size(), s, integ, "run.ckpt");
+    REQUIRE_FALSE(st.ok());
+    CHECK(st.error().code == ErrorCode::bad_file_format);
+    CHECK(s.coordinates<0>().position == before.coordinates<0>().position);  // untouched
+    return st.error().what();
+  };
+  ImplicitIntegrator<Pendulum> other(scene, settings);
+  std::vector<unsigned char> flipped = bytes;
+  flipped[flipped.size() / 2] ^= 0x04;
+  CHECK(error_of(flipped, other).find("'run.ckpt': checksum mismatch") != std::string::npos);
+  std::vector<unsigned char> foreign = bytes;
+  foreign[16] ^= 0x01;  // the scene signature
+  CHECK(error_of(foreign, other).find("of another scene") != std::string::npos);
+  std::vector<unsigned char> cut(bytes.begin(), bytes.end() - 8);
+  CHECK(error_of(cut, other).find("truncated or padded") != std::string::npos);
+  const std::string text = "t,stroke\n0,0\n";
+  CHECK(error_of({text.begin(), text.end()}, other).find("not a flexstress checkpoint") !=
+        std::string::npos);
+  settings.step = 1e-3;
+  ImplicitIntegrator<Pendulum> finer(scene, settings);
+  CHECK(error_of(bytes, finer).find("taken with the step h = 0.005") != std::string::npos);
 }

@@ -32,10 +32,12 @@ using MatrixXd = Eigen::MatrixXd;
 using Index = Eigen::Index;
 
 /// Largest absolute entry, 0 for an empty vector (a scene without constraints has nc = 0;
-/// Eigen's maxCoeff() asserts on empty input).
+/// Eigen's maxCoeff() asserts on empty input), NaN if any entry is NaN (Eigen's default
+/// maxCoeff() may skip NaN, and a tolerance test on it would then pass a NaN state).
 template <class Derived>
 typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& v) {
-  return v.size() == 0 ? typename Derived::Scalar(0) : v.cwiseAbs().maxCoeff();
+  return v.size() == 0 ? typename Derived::Scalar(0)
+                       : v.cwiseAbs().template maxCoeff<Eigen::PropagateNaN>();
 }
 
 }  // namespace flexstress

@@ -153,6 +153,9 @@ class ImplicitIntegrator {
   /// motion (index-1 augmented Lagrangian iteration). Sets a = v_dot.
   Status initialize(State& s, int max_iterations = 100) {
     if (Status data = scene_->check_effect_data(); !data) return data;
+    if (const int body = scene_->nonfinite_body(s); body >= 0)
+      return make_error(ErrorCode::invalid_argument, "initial conditions: body ", body,
+                        " has a coordinate or velocity that is not finite");
     const Scalar tol = settings_.position_floor * Scalar(10);
     scene_->update_kinematics(s, ws_);
     scene_->update_constraints(s, ws_);
@@ -353,6 +356,40 @@ class ImplicitIntegrator {
 
   /// Penalty alpha in use (after the first factorization).
   Scalar penalty() const { return alpha_; }
+
+  /// What the next step depends on besides the State: the previous v_dot (the predictor) and
+  /// the factorized iteration matrix with its penalty (the modified Newton reuses it across
+  /// steps). Saved and restored by checkpoints (dynamics/checkpoint.hpp), so a restored run
+  /// continues bit-identically.
+  struct History {
+    VecV vd_prev;
+    bool has_previous = false;
+    bool have_factorization = false;
+    Scalar alpha = Scalar(0);
+    MatVV iteration;  ///< the matrix last factorized (meaningful with have_factorization)
+    Statistics statistics;
+  };
+  void save_history(History& h) const {
+    h.vd_prev = vd_prev_;
+    h.has_previous = has_previous_;
+    h.have_factorization = have_factorization_;
+    h.alpha = alpha_;
+    if (have_factorization_) h.iteration = iteration_;
+    h.statistics = stats_;
+  }
+  /// Restores a saved history (setup: refactorizes the saved matrix, which gives the same
+  /// factor bit for bit). The sizes must be the scene's (checkpoint.hpp checks them).
+  void restore_history(const History& h) {
+    vd_prev_ = h.vd_prev;
+    has_previous_ = h.has_previous;
+    alpha_ = h.alpha;
+    stats_ = h.statistics;
+    have_factorization_ = h.have_factorization;
+    if (have_factorization_) {
+      iteration_ = h.iteration;
+      llt_.compute(iteration_);
+    }
+  }
 
  private:
   /// S = M b' + D g' + K + alpha B^T B at the current evaluation (ws_ is up to date).

@@ -484,6 +484,22 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
     return finite;
   }
 
+  /// The first body whose coordinates or velocities are not finite, or -1.
+  int nonfinite_body(const State& s) const {
+    int found = -1;
+    detail::for_each_index(
+        [&](auto k) {
+          constexpr int K = static_cast<int>(decltype(k)::value);
+          const auto& q = std::get<static_cast<std::size_t>(K)>(s.q);
+          bool finite =
+              q.position.allFinite() && q.theta.allFinite() && s.template velocity<K>().allFinite();
+          if constexpr (has_modes<K>) finite = finite && q.p.allFinite();
+          if (!finite && found < 0) found = K;
+        },
+        std::make_index_sequence<num_bodies>{});
+    return found;
+  }
+
   /// Largest modal angular frequency of the scene's flexible bodies.
   Scalar max_modal_frequency() const {
     Scalar m = Scalar(0);

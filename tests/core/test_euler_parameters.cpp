@@ -9,6 +9,8 @@
 
 #include <flexstress/core/euler_parameters.hpp>
 
+namespace test_euler_parameters {
+
 using namespace flexstress;
 
 namespace {
@@ -144,3 +146,5 @@ TEST_CASE("skew and unskew") {
   CHECK((unskew(skew(a)) - a).norm() < 1e-15);
   CHECK((skew(a) + skew(a).transpose()).norm() == 0.0);
 }
+
+}  // namespace test_euler_parameters

@@ -3,6 +3,8 @@
 
 #include <flexstress/core/status.hpp>
 
+namespace test_status {
+
 using namespace flexstress;
 
 namespace {
@@ -31,3 +33,5 @@ TEST_CASE("StepStatus has readable names") {
   CHECK(std::string(to_string(StepStatus::ok)) == "ok");
   CHECK(std::string(to_string(StepStatus::non_finite_state)) == "non-finite state");
 }
+
+}  // namespace test_status

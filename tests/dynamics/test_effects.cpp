@@ -17,6 +17,8 @@
 
 #include "fixtures.hpp"
 
+namespace test_effects {
+
 using namespace flexstress;
 
 namespace {
@@ -261,3 +263,5 @@ TEST_CASE("energy audit: a driven, damped flexible beam balances driver work and
   CHECK(fine.residual < 0.1 * fine.dissipated);  // leaving out D would fail the balance
   CHECK(fine.residual < coarse.residual);        // and the balance improves with h
 }
+
+}  // namespace test_effects

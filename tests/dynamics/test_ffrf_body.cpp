@@ -14,6 +14,8 @@
 
 #include "fixtures.hpp"
 
+namespace test_ffrf_body {
+
 using namespace flexstress;
 
 namespace {
@@ -246,3 +248,5 @@ TEST_CASE("a general (non-orthonormal) mode set conserves too") {
   CHECK(de < 1e-6);
   CHECK(dh < 1e-6);
 }
+
+}  // namespace test_ffrf_body

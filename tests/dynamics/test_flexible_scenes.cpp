@@ -15,6 +15,8 @@
 
 #include "fixtures.hpp"
 
+namespace test_flexible_scenes {
+
 using namespace flexstress;
 
 namespace {
@@ -239,3 +241,5 @@ TEST_CASE("a float scene runs: Euler parameters stay unit to float precision") {
   MESSAGE("float vs double frame position after 0.5 s: " << diff << " m");
   CHECK(diff < 1e-3);
 }
+
+}  // namespace test_flexible_scenes

@@ -10,6 +10,8 @@
 
 #include "../../examples/four_bar_chain/four_bar_chain.hpp"
 
+namespace test_four_bar_chain {
+
 using namespace flexstress;
 
 TEST_CASE("A02 N four-bar (N = 4): 20 s through 20 singular configurations without a jump") {
@@ -48,3 +50,5 @@ TEST_CASE("A02 N four-bar (N = 4): 20 s through 20 singular configurations witho
   CHECK(over_budget < steps / 100);
   CHECK(monitor.budget_angle < 0.01);
 }
+
+}  // namespace test_four_bar_chain

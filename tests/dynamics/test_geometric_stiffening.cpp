@@ -25,6 +25,8 @@
 
 #include "../../examples/spin_up_beam/spin_up_model.hpp"
 
+namespace test_geometric_stiffening {
+
 using namespace flexstress;
 
 namespace {
@@ -255,3 +257,5 @@ TEST_CASE("GeometricStiffening without geometric stiffness data is an error, not
   REQUIRE(fewer.ok());
   CHECK_FALSE(scene.body<0>().set_geometric_stiffness(*fewer).ok());
 }
+
+}  // namespace test_geometric_stiffening

@@ -13,6 +13,8 @@
 #include <flexstress/dynamics/hydraulic_cylinder.hpp>
 #include <flexstress/dynamics/implicit_integrator.hpp>
 
+namespace test_hydraulics {
+
 using namespace flexstress;
 
 namespace {
@@ -209,3 +211,5 @@ TEST_CASE("checkpoint of a hydraulic scene restores the chamber pressures bit-id
   CHECK(b.v == a.v);
   CHECK(b.lambda == a.lambda);
 }
+
+}  // namespace test_hydraulics

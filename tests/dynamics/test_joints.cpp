@@ -10,6 +10,8 @@
 
 #include "fixtures.hpp"
 
+namespace test_joints {
+
 using namespace flexstress;
 
 namespace {
@@ -110,3 +112,5 @@ TEST_CASE("constraint Jacobians and convective terms of every joint match finite
     }
   }
 }
+
+}  // namespace test_joints

@@ -9,6 +9,8 @@
 
 #include <flexstress/dynamics/implicit_integrator.hpp>
 
+namespace test_mechanisms {
+
 using namespace flexstress;
 
 namespace {
@@ -196,3 +198,5 @@ TEST_CASE("a planar loop with redundant revolutes moves like the same loop made 
   CHECK(range > 0.05);
   CHECK(diff < 1e-8 * (1 + range));
 }
+
+}  // namespace test_mechanisms

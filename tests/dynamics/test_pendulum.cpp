@@ -8,6 +8,8 @@
 #include <flexstress/dynamics/checkpoint.hpp>
 #include <flexstress/dynamics/implicit_integrator.hpp>
 
+namespace test_pendulum {
+
 using namespace flexstress;
 
 namespace {
@@ -206,3 +208,5 @@ TEST_CASE("checkpoint: a restored run continues bit-identically; damaged ones ar
   ImplicitIntegrator<Pendulum> finer(scene, settings);
   CHECK(error_of(bytes, finer).find("taken with the step h = 0.005") != std::string::npos);
 }
+
+}  // namespace test_pendulum

@@ -12,6 +12,8 @@
 
 #include "fatigue/fatigue_test_helpers.hpp"
 
+namespace test_cycle_matrix {
+
 using namespace flexstress;
 using namespace flexstress::fatigue;
 
@@ -129,3 +131,5 @@ TEST_CASE("bad bins are rejected with the edge named") {
   auto none = Bins<double>::uniform(0, 1, 0);
   REQUIRE_FALSE(none.ok());
 }
+
+}  // namespace test_cycle_matrix

@@ -16,6 +16,8 @@
 
 #include "fatigue/fatigue_test_helpers.hpp"
 
+namespace test_damage {
+
 using namespace flexstress;
 using namespace flexstress::fatigue;
 
@@ -213,3 +215,5 @@ TEST_CASE("bad damage input is rejected with a message naming it") {
   REQUIRE_FALSE(empty.ok());
   CHECK(empty.error().message == "stress history is empty");
 }
+
+}  // namespace test_damage

@@ -45,7 +45,11 @@ template struct InteractionCheck<float>;
 template struct InteractionCheck<double>;
 }  // namespace flexstress::fatigue
 
+namespace test_fatigue_instantiation {
+
 TEST_CASE("fatigue templates instantiate for float and double") {
   CHECK(flexstress::fatigue::StreamingRainflow<float, 2>::residue_capacity == 4);
   CHECK(flexstress::fatigue::SnCurve<double>::max_segments == 4);
 }
+
+}  // namespace test_fatigue_instantiation

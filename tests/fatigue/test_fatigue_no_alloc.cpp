@@ -20,6 +20,8 @@
 
 #include "support/counting_new.hpp"
 
+namespace test_fatigue_no_alloc {
+
 using flexstress::testing::g_allocations;
 using namespace flexstress;
 using namespace flexstress::fatigue;
@@ -104,3 +106,5 @@ TEST_CASE("streaming weld line allocates nothing per step") {
   CHECK(refused == 0);
   CHECK(critical.damage > 0);
 }
+
+}  // namespace test_fatigue_no_alloc

@@ -6,6 +6,8 @@
 
 #include <flexstress/fatigue/mean_stress.hpp>
 
+namespace test_mean_stress {
+
 using namespace flexstress::fatigue;
 
 TEST_CASE_TEMPLATE("IIW f(R) for stress-relieved details at its defining points", T, float,
@@ -55,3 +57,5 @@ TEST_CASE_TEMPLATE("EN 1993-1-9 7.2.1: tensile part plus 60 % of the compressive
   CHECK(corrected_range(Cycle<T>{40, -60, 1}, MeanStressCorrection::en1993_compressive_60pct) ==
         doctest::Approx(76));
 }
+
+}  // namespace test_mean_stress

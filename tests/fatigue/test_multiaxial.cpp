@@ -9,6 +9,8 @@
 #include <flexstress/fatigue/damage.hpp>
 #include <flexstress/fatigue/multiaxial.hpp>
 
+namespace test_multiaxial {
+
 using namespace flexstress;
 using namespace flexstress::fatigue;
 
@@ -100,3 +102,5 @@ TEST_CASE("bad interaction input is rejected") {
   auto dmg = en1993_interaction_from_damage(0.1, -0.2);
   REQUIRE_FALSE(dmg.ok());
 }
+
+}  // namespace test_multiaxial

@@ -13,6 +13,8 @@
 
 #include "fatigue/fatigue_test_helpers.hpp"
 
+namespace test_rainflow {
+
 using namespace flexstress;
 using namespace flexstress::fatigue;
 
@@ -178,3 +180,5 @@ TEST_CASE("class-bin batch counting rejects samples outside the window") {
   REQUIRE_FALSE(bad_grid.ok());
   CHECK(bad_grid.error().message == "class window needs lower < upper, got [1, 1]");
 }
+
+}  // namespace test_rainflow

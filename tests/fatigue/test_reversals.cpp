@@ -13,6 +13,8 @@
 
 #include "fatigue/fatigue_test_helpers.hpp"
 
+namespace test_reversals {
+
 using namespace flexstress;
 using namespace flexstress::fatigue;
 
@@ -99,3 +101,5 @@ TEST_CASE("bad input to extract_reversals names what and where") {
   REQUIRE_FALSE(bad_gate.ok());
   CHECK(bad_gate.error().message == "hysteresis gate must be finite and >= 0, got -1");
 }
+
+}  // namespace test_reversals

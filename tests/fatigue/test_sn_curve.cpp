@@ -13,6 +13,8 @@
 
 #include <flexstress/fatigue/sn_curve.hpp>
 
+namespace test_sn_curve {
+
 using namespace flexstress;
 using namespace flexstress::fatigue;
 
@@ -166,3 +168,5 @@ TEST_CASE("bad S-N input is rejected with a message naming it") {
   auto scale = en1993_normal_curve(80.0)->scaled(0.0);
   REQUIRE_FALSE(scale.ok());
 }
+
+}  // namespace test_sn_curve

@@ -14,6 +14,8 @@
 
 #include "fatigue/fatigue_test_helpers.hpp"
 
+namespace test_streaming_rainflow {
+
 using namespace flexstress;
 using namespace flexstress::fatigue;
 
@@ -197,3 +199,5 @@ TEST_CASE("streaming counter setup errors") {
   REQUIRE_FALSE(bad_gate.ok());
   CHECK(bad_gate.error().message == "class gate must be in [0, 9], got 10");
 }
+
+}  // namespace test_streaming_rainflow

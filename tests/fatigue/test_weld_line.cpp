@@ -13,6 +13,8 @@
 
 #include "fatigue/fatigue_test_helpers.hpp"
 
+namespace test_weld_line {
+
 using namespace flexstress;
 using namespace flexstress::fatigue;
 
@@ -104,3 +106,5 @@ TEST_CASE("weld line bad input") {
   CHECK(stream->meter(0).counter().samples() == 2);
   CHECK(stream->meter(0).damage(CycleClosure::half_cycles) == before);
 }
+
+}  // namespace test_weld_line

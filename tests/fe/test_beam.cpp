@@ -10,6 +10,8 @@
 #include <flexstress/fe/eigen_solver.hpp>
 #include <flexstress/fe/static_solver.hpp>
 
+namespace test_beam {
+
 using namespace flexstress;
 using namespace flexstress::fe;
 
@@ -323,3 +325,5 @@ TEST_CASE("dense and subspace-iteration eigen solvers agree (with a Sturm check)
   for (int i = 6; i < 10; ++i)
     CHECK(sub_free->eigenvalues(i) == doctest::Approx(dense_free->eigenvalues(i)).epsilon(1e-9));
 }
+
+}  // namespace test_beam

@@ -12,6 +12,8 @@
 #include <flexstress/fe/eigen_solver_spectra.hpp>
 #include <flexstress/fe/rhs_attachment_mesh.hpp>
 
+namespace test_eigen_solver_spectra {
+
 using namespace flexstress;
 using namespace flexstress::fe;
 
@@ -73,5 +75,7 @@ TEST_CASE("Spectra shift-invert: free-free structure and bad input") {
   REQUIRE_FALSE(bad.ok());
   CHECK(bad.error().code == ErrorCode::size_mismatch);
 }
+
+}  // namespace test_eigen_solver_spectra
 
 #endif  // FLEXSTRESS_TEST_SPECTRA

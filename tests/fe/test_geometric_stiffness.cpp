@@ -13,6 +13,8 @@
 #include <flexstress/fe/geometric_stiffness.hpp>
 #include <flexstress/fe/static_solver.hpp>
 
+namespace test_geometric_stiffness {
+
 using namespace flexstress;
 using namespace flexstress::fe;
 
@@ -132,3 +134,5 @@ TEST_CASE("geometric stiffness: no stress, no stiffness; tension stiffens, compr
   CHECK(bend.dot(*kg * bend) ==
         doctest::Approx(-bend.dot(*assemble_geometric_stiffness(mesh, *dofs, -stretch) * bend)));
 }
+
+}  // namespace test_geometric_stiffness

@@ -8,6 +8,8 @@
 #include <flexstress/fe/assembly.hpp>
 #include <flexstress/fe/static_solver.hpp>
 
+namespace test_hex8 {
+
 using namespace flexstress;
 using namespace flexstress::fe;
 
@@ -265,3 +267,5 @@ TEST_CASE("bad brick and link input gets a clear error") {
       CHECK(s.error().message.find(motion) != std::string::npos);
   }
 }
+
+}  // namespace test_hex8

@@ -15,6 +15,8 @@
 #include <flexstress/fe/static_solver.hpp>
 #include <flexstress/fe/stress_recovery.hpp>
 
+namespace test_rhs_attachment_mesh {
+
 using namespace flexstress;
 using namespace flexstress::fe;
 
@@ -324,3 +326,5 @@ TEST_CASE("RHS attachment mesh: far-field stress matches beam theory, the weld t
     CHECK(rigid_stress->stress.cwiseAbs().maxCoeff() < 1e-9 * 210e9 * b.norm());
   }
 }
+
+}  // namespace test_rhs_attachment_mesh

@@ -15,6 +15,8 @@
 #include <flexstress/fe/stress_measures.hpp>
 #include <flexstress/fe/stress_recovery.hpp>
 
+namespace test_stress_recovery {
+
 using namespace flexstress;
 using namespace flexstress::fe;
 
@@ -408,3 +410,5 @@ TEST_CASE("point location: clear errors outside the mesh") {
     CHECK(r.error().message.find("no hex8 elements") != std::string::npos);
   }
 }
+
+}  // namespace test_stress_recovery

@@ -18,6 +18,8 @@
 #include <flexstress/fe/static_solver.hpp>
 #include <flexstress/fe/vtk_writer.hpp>
 
+namespace test_vtk_writer {
+
 using namespace flexstress;
 using namespace flexstress::fe;
 
@@ -247,3 +249,5 @@ TEST_CASE("VTK: clear errors") {
     CHECK(s.error().code == ErrorCode::invalid_argument);
   }
 }
+
+}  // namespace test_vtk_writer

@@ -13,6 +13,8 @@
 
 #include "../../examples/crane/boom_model.hpp"
 
+namespace test_crane_boom {
+
 using namespace flexstress;
 
 namespace {
@@ -52,3 +54,5 @@ TEST_CASE("crane boom: reduced elastic frequencies bound the full beam model's f
     }
   }
 }
+
+}  // namespace test_crane_boom

@@ -14,6 +14,8 @@
 #include <flexstress/fe/beam_line.hpp>
 #include <flexstress/reduction/modal_body_io.hpp>
 
+namespace test_modal_body_io {
+
 using namespace flexstress;
 using namespace flexstress::reduction;
 
@@ -190,3 +192,5 @@ TEST_CASE("random corruption never crashes the loader (in-test fuzzing)") {
   MESSAGE(rejected << " corrupted images rejected, " << accepted << " accepted as valid");
   CHECK(rejected > 1500);
 }
+
+}  // namespace test_modal_body_io

@@ -11,6 +11,8 @@
 #include <flexstress/reduction/body_stress_modes.hpp>
 #include <flexstress/reduction/modal_body_data.hpp>
 
+namespace test_reduction {
+
 using namespace flexstress;
 using namespace flexstress::fe;
 using namespace flexstress::reduction;
@@ -407,3 +409,5 @@ TEST_CASE("bad reduction input gets a clear error") {
     CHECK(r.error().message.find("interior block") != std::string::npos);
   }
 }
+
+}  // namespace test_reduction

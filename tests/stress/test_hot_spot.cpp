@@ -8,6 +8,8 @@
 #include <flexstress/stress/fused_stress.hpp>
 #include <flexstress/stress/hot_spot.hpp>
 
+namespace test_hot_spot {
+
 using namespace flexstress;
 using namespace flexstress::stress;
 
@@ -98,3 +100,5 @@ TEST_CASE("principal stress within 60 degrees of the toe normal") {
   CHECK(principal_near_direction<double>(s, Vector3d::UnitZ(), 60 * M_PI / 180) ==
         doctest::Approx(0.0));
 }
+
+}  // namespace test_hot_spot

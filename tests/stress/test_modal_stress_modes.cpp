@@ -13,6 +13,8 @@
 
 #include "dynamics/fixtures.hpp"
 
+namespace test_modal_stress_modes {
+
 using namespace flexstress;
 
 TEST_CASE("modal stress modes reproduce a full sub-model solve at every node") {
@@ -86,3 +88,5 @@ TEST_CASE("modal stress modes refuse a host with too few modes or a mismatched b
   REQUIRE_FALSE(wrong.ok());
   CHECK(wrong.error().what().find("12 boundary DOFs") != std::string::npos);
 }
+
+}  // namespace test_modal_stress_modes

@@ -22,6 +22,8 @@
 #include "dynamics/fixtures.hpp"
 #include "support/counting_new.hpp"
 
+namespace test_no_alloc {
+
 using namespace flexstress;
 
 namespace {
@@ -200,3 +202,5 @@ TEST_CASE("geometric stiffening and the energy audit allocate nothing per step e
   CHECK(std::isfinite(audit.residual()));
   CHECK(explicit_steps_allocate(scene) == 0);
 }
+
+}  // namespace test_no_alloc

@@ -19,6 +19,8 @@
 
 #include "dynamics/fixtures.hpp"
 
+namespace test_sub_model {
+
 using namespace flexstress;
 using namespace flexstress::stress;
 
@@ -366,3 +368,5 @@ TEST_CASE("the hot-spot stress is insensitive to the sub-model mesh (three densi
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
   CHECK(*hi - *lo < 0.03 * *lo);
 }
+
+}  // namespace test_sub_model

@@ -12,6 +12,8 @@
 #include <flexstress/stress/sub_model.hpp>
 #include <flexstress/stress/sub_model_inertia.hpp>
 
+namespace test_sub_model_inertia {
+
 using namespace flexstress;
 
 namespace {
@@ -110,3 +112,5 @@ TEST_CASE(
   const VectorXd none = seg.sub->inertia_response([](const Vector3d&) { return Vector3d::Zero(); });
   CHECK(none.cwiseAbs().maxCoeff() == 0.0);
 }
+
+}  // namespace test_sub_model_inertia

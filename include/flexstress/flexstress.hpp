@@ -14,6 +14,7 @@
 #include "flexstress/core/types.hpp"
 
 #include "flexstress/fe/assembly.hpp"
+#include "flexstress/fe/averaging_link.hpp"
 #include "flexstress/fe/beam3d.hpp"
 #include "flexstress/fe/beam_line.hpp"
 #include "flexstress/fe/beam_section.hpp"

@@ -6,23 +6,30 @@
 // prescribed_dofs()), T (n_all x n_free) and G (n_all x n_prescribed) sparse. Rigid links
 // (RBE2) give slave rows u_s = u_m + theta_m x (x_s - x_m) = u_m - skew(x_s - x_m) theta_m and
 // theta_s = theta_m; chains of links (a slave that is the master of another link) are resolved
-// recursively, loops are an error. The reduced stiffness is T^T K T and the load
+// recursively, loops are an error. Averaging links (RBE3, averaging_link.hpp) tie their
+// reference's six DOFs to the face translations by [u_ref; theta_ref] = C u_face; six face DOFs
+// become dependent, u_d = C_d^-1 (u_ref - C_o u_o), chosen among the free face DOFs by full
+// pivoting of C (the best-conditioned C_d), so the reference stays an ordinary DOF that can be
+// loaded, supported or made an interface. The reduced stiffness is T^T K T and the load
 // T^T (f - K G v): no penalty, no Lagrange multipliers.
 //
 // Keeping G separate from the values lets one factorization of T^T K T serve any prescribed
 // values: Craig-Bampton constraint modes and sub-model influence matrices are unit values of v.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include <Eigen/LU>
 #include <Eigen/SparseCore>
 
 #include "flexstress/core/precompute.hpp"
 #include "flexstress/core/skew.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
+#include "flexstress/fe/averaging_link.hpp"
 #include "flexstress/fe/boundary_conditions.hpp"
 #include "flexstress/fe/dof_map.hpp"
 #include "flexstress/fe/mesh.hpp"
@@ -122,6 +129,53 @@ class ConstraintTransform {
     }
     ct.values_ = Eigen::Map<const VectorXd>(values.data(), static_cast<Index>(values.size()));
 
+    // Averaging links: six dependent face DOFs each, as combinations of the link's other DOFs.
+    using Terms = std::vector<std::pair<Index, double>>;  // (global DOF, coefficient)
+    std::vector<Terms> averaged(static_cast<std::size_t>(n));
+    std::vector<Index> averaged_by(static_cast<std::size_t>(n), -1);
+    for (std::size_t l = 0; l < mesh.averaging_links().size(); ++l) {
+      const AveragingLink& link = mesh.averaging_links()[l];
+      auto fit = averaging_fit(link, l, mesh.nodes());
+      if (!fit) return fit.error();
+      std::vector<Index> face_dofs, candidates;  // candidates: positions in face_dofs
+      for (Index f : link.face)
+        for (int c = 0; c < 3; ++c) {
+          const Index d = dofs.dof(f, c);
+          if (ct.kind_[static_cast<std::size_t>(d)] == DofKind::free)
+            candidates.push_back(static_cast<Index>(face_dofs.size()));
+          face_dofs.push_back(d);
+        }
+      MatrixXd cand(6, static_cast<Index>(std::max<std::size_t>(candidates.size(), 6)));
+      cand.setZero();  // zero columns (too few candidates) fail the rank test below
+      for (std::size_t j = 0; j < candidates.size(); ++j)
+        cand.col(static_cast<Index>(j)) = fit->col(candidates[j]);
+      const Eigen::FullPivLU<MatrixXd> lu(cand);
+      if (candidates.size() < 6 || lu.rank() < 6)
+        return make_error(ErrorCode::invalid_mesh, "averaging link ", l,
+                          ": too few of its face DOFs are free (the others are prescribed or "
+                          "follow other links) for the reference node ",
+                          link.reference, " to follow the face");
+      std::vector<char> dependent(face_dofs.size(), 0);
+      Mat6d c_d;
+      for (int k = 0; k < 6; ++k) {
+        const Index j = candidates[static_cast<std::size_t>(lu.permutationQ().indices()(k))];
+        dependent[static_cast<std::size_t>(j)] = 1;
+        c_d.col(k) = fit->col(j);
+      }
+      const Mat6d c_d_inv = c_d.inverse();
+      for (int k = 0; k < 6; ++k) {
+        const Index j = candidates[static_cast<std::size_t>(lu.permutationQ().indices()(k))];
+        const Index d = face_dofs[static_cast<std::size_t>(j)];
+        Terms& terms = averaged[static_cast<std::size_t>(d)];
+        for (int r = 0; r < 6; ++r) terms.push_back({dofs.dof(link.reference, r), c_d_inv(k, r)});
+        for (std::size_t o = 0; o < face_dofs.size(); ++o)
+          if (!dependent[o])
+            terms.push_back({face_dofs[o], -c_d_inv.row(k).dot(fit->col(static_cast<Index>(o)))});
+        ct.kind_[static_cast<std::size_t>(d)] = DofKind::slave;
+        averaged_by[static_cast<std::size_t>(d)] = static_cast<Index>(l);
+      }
+    }
+
     // Free columns.
     for (Index d = 0; d < n; ++d)
       if (ct.kind_[static_cast<std::size_t>(d)] == DofKind::free) {
@@ -133,16 +187,26 @@ class ConstraintTransform {
     // Rows as sparse combinations of [free | prescribed] columns, resolved recursively.
     using Row = std::vector<std::pair<Index, double>>;  // (column in [free|prescribed], coeff)
     std::vector<Row> rows(static_cast<std::size_t>(n));
-    std::vector<char> done(static_cast<std::size_t>(n), 0);
+    std::vector<char> done(static_cast<std::size_t>(n), 0);  // 2: being resolved
+    Index loop_dof = -1;
     const Index nf = ct.num_free_;
     auto resolve = [&](auto&& self, Index d) -> const Row& {
       auto& row = rows[static_cast<std::size_t>(d)];
+      if (done[static_cast<std::size_t>(d)] == 2) loop_dof = d;
       if (done[static_cast<std::size_t>(d)]) return row;
+      done[static_cast<std::size_t>(d)] = 2;
       const auto k = ct.kind_[static_cast<std::size_t>(d)];
       if (k == DofKind::free) {
         row.push_back({ct.column_[static_cast<std::size_t>(d)], 1.0});
       } else if (k == DofKind::prescribed) {
         row.push_back({nf + ct.column_[static_cast<std::size_t>(d)], 1.0});
+      } else if (averaged_by[static_cast<std::size_t>(d)] >= 0) {
+        Row combined;
+        for (const auto& [dof, f] : averaged[static_cast<std::size_t>(d)]) {
+          if (f == 0.0) continue;
+          for (const auto& [col, v] : self(self, dof)) combined.push_back({col, f * v});
+        }
+        row = std::move(combined);
       } else {
         const Index node = dofs.node_of(d);
         const int c = dofs.component_of(d);
@@ -170,6 +234,11 @@ class ConstraintTransform {
     for (Index d = 0; d < n; ++d)
       for (const auto& [col, v] : resolve(resolve, d))
         (col < nf ? t_trip : g_trip).emplace_back(d, col < nf ? col : col - nf, v);
+    if (loop_dof >= 0)
+      return make_error(ErrorCode::invalid_mesh, "links form a loop through ",
+                        dofs.describe(loop_dof),
+                        " (an averaging link's face follows, through other links, its own "
+                        "reference)");
     ct.t_.resize(n, nf);
     ct.t_.setFromTriplets(t_trip.begin(), t_trip.end());
     ct.g_.resize(n, static_cast<Index>(ct.prescribed_.size()));

@@ -1,9 +1,10 @@
 // Numbering of nodal DOFs: solid nodes carry 3 translations, beam nodes 6 (translations, then
 // rotations about the global axes); mixed meshes mix both.
 //
-// A node gets rotations if a beam uses it, if it is the master of a rigid link, if a point mass
-// with rotational inertia sits on it, or if require_rotations() asked for it. Otherwise it has 3
-// translations if any element, point mass or link uses it, and none at all if nothing does.
+// A node gets rotations if a beam uses it, if it is the master of a rigid link or the reference
+// of an averaging link, if a point mass with rotational inertia sits on it, or if
+// require_rotations() asked for it. Otherwise it has 3 translations if any element, point mass
+// or link uses it, and none at all if nothing does.
 #pragma once
 
 #include <string>
@@ -36,6 +37,10 @@ class DofMap {
     for (const auto& l : mesh.rigid_links()) {
       at_least(l.master, 6);
       for (Index s : l.slaves) at_least(s, 3);
+    }
+    for (const auto& l : mesh.averaging_links()) {
+      at_least(l.reference, 6);
+      for (Index f : l.face) at_least(f, 3);
     }
     for (Index n : mesh.rotation_nodes()) at_least(n, 6);
 

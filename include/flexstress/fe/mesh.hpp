@@ -1,11 +1,12 @@
 // A finite-element mesh built in code: nodes, materials, sections and elements (3D beams,
-// 8-node bricks, point masses, rigid massless links).
+// 8-node bricks, point masses, rigid massless links and averaging links).
 //
 // Building a mesh never fails: add_* only records what it is given. `validate()` (called by
 // every algorithm that consumes a mesh) checks everything at once and names the offending node,
 // element, material or section. Ids are dense indices in order of creation.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
+#include "flexstress/fe/averaging_link.hpp"
 #include "flexstress/fe/beam_section.hpp"
 #include "flexstress/fe/material.hpp"
 
@@ -108,6 +110,13 @@ class Mesh {
     rigid_links_.push_back(RigidLink{master, std::move(slaves)});
     return static_cast<Index>(rigid_links_.size()) - 1;
   }
+  /// An averaging link (RBE3): `reference` follows the weighted least-squares rigid fit of the
+  /// face nodes (weights empty: all 1). See averaging_link.hpp.
+  Index add_averaging_link(Index reference, std::vector<Index> face,
+                           std::vector<double> weights = {}) {
+    averaging_links_.push_back(AveragingLink{reference, std::move(face), std::move(weights)});
+    return static_cast<Index>(averaging_links_.size()) - 1;
+  }
   /// Gives a node rotational DOFs even if no element needs them (e.g. an interface node).
   void require_rotations(Index node) { rotation_nodes_.push_back(node); }
 
@@ -120,6 +129,7 @@ class Mesh {
   const std::vector<Hex8Element>& hexes() const { return hexes_; }
   const std::vector<PointMass>& point_masses() const { return point_masses_; }
   const std::vector<RigidLink>& rigid_links() const { return rigid_links_; }
+  const std::vector<AveragingLink>& averaging_links() const { return averaging_links_; }
   const std::vector<Index>& rotation_nodes() const { return rotation_nodes_; }
   const Material& material(Index i) const { return materials_[static_cast<std::size_t>(i)]; }
   const BeamSection& section(Index i) const { return sections_[static_cast<std::size_t>(i)]; }
@@ -213,6 +223,25 @@ class Mesh {
                             " is both master and slave");
       }
     }
+    for (std::size_t i = 0; i < averaging_links_.size(); ++i) {
+      const AveragingLink& l = averaging_links_[i];
+      if (bad_node(l.reference))
+        return make_error(ErrorCode::invalid_mesh, "averaging link ", i, " has reference node ",
+                          l.reference, ", which does not exist");
+      std::vector<Index> sorted = l.face;
+      std::sort(sorted.begin(), sorted.end());
+      for (std::size_t k = 0; k < sorted.size(); ++k) {
+        if (bad_node(sorted[k]))
+          return make_error(ErrorCode::invalid_mesh, "averaging link ", i, " has face node ",
+                            sorted[k], ", which does not exist");
+        if (sorted[k] == l.reference)
+          return make_error(ErrorCode::invalid_mesh, "averaging link ", i, ": node ", sorted[k],
+                            " is both its reference and a face node");
+        if (k > 0 && sorted[k] == sorted[k - 1])
+          return make_error(ErrorCode::invalid_mesh, "averaging link ", i, " lists face node ",
+                            sorted[k], " twice");
+      }
+    }
     for (Index n : rotation_nodes_)
       if (bad_node(n))
         return make_error(ErrorCode::invalid_mesh, "require_rotations: node ", n,
@@ -228,6 +257,7 @@ class Mesh {
   std::vector<Hex8Element> hexes_;
   std::vector<PointMass> point_masses_;
   std::vector<RigidLink> rigid_links_;
+  std::vector<AveragingLink> averaging_links_;
   std::vector<Index> rotation_nodes_;
 };
 

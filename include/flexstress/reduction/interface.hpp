@@ -28,24 +28,44 @@ struct InterfaceNode {
   }
 };
 
-/// Adds a node at the centroid of `face_nodes` (or at `position` if given) and ties the face to
-/// it rigidly (RBE2). Returns the new node; its six DOFs can serve as an interface.
-FLEXSTRESS_PRECOMPUTE
-Index add_rigid_spider(fe::Mesh& mesh, const std::vector<Index>& face_nodes) {
+/// The centroid of a node set (the origin for an empty set; the mesh's validation reports
+/// nodes that do not exist when the spider is used).
+inline Vector3d face_centroid(const fe::Mesh& mesh, const std::vector<Index>& face_nodes) {
   Vector3d c = Vector3d::Zero();
-  for (Index n : face_nodes) c += mesh.node(n);
-  if (!face_nodes.empty()) c /= static_cast<double>(face_nodes.size());
-  const Index master = mesh.add_node(c);
-  mesh.add_rigid_link(master, face_nodes);
-  return master;
+  for (Index n : face_nodes)
+    if (n >= 0 && n < mesh.num_nodes()) c += mesh.node(n);
+  return face_nodes.empty() ? c : Vector3d(c / static_cast<double>(face_nodes.size()));
 }
 
+/// Adds a node at `position` (default: the centroid of `face_nodes`) and ties the face to it
+/// rigidly (RBE2). Returns the new node; its six DOFs can serve as an interface.
 FLEXSTRESS_PRECOMPUTE
 Index add_rigid_spider(fe::Mesh& mesh, const std::vector<Index>& face_nodes,
                        const Vector3d& position) {
   const Index master = mesh.add_node(position);
   mesh.add_rigid_link(master, face_nodes);
   return master;
+}
+
+FLEXSTRESS_PRECOMPUTE
+Index add_rigid_spider(fe::Mesh& mesh, const std::vector<Index>& face_nodes) {
+  return add_rigid_spider(mesh, face_nodes, face_centroid(mesh, face_nodes));
+}
+
+/// Adds a node at `position` (default: the centroid of `face_nodes`) that follows the face's
+/// least-squares rigid fit (RBE3, equal weights) without stiffening it. Returns the new node; its
+/// six DOFs can serve as an interface.
+FLEXSTRESS_PRECOMPUTE
+Index add_averaging_spider(fe::Mesh& mesh, const std::vector<Index>& face_nodes,
+                           const Vector3d& position) {
+  const Index reference = mesh.add_node(position);
+  mesh.add_averaging_link(reference, face_nodes);
+  return reference;
+}
+
+FLEXSTRESS_PRECOMPUTE
+Index add_averaging_spider(fe::Mesh& mesh, const std::vector<Index>& face_nodes) {
+  return add_averaging_spider(mesh, face_nodes, face_centroid(mesh, face_nodes));
 }
 
 }  // namespace flexstress::reduction

@@ -3,6 +3,7 @@
 // Run with --help for the options. Writes <output>/crane_history.csv, detail_d_peak.vtu and
 // crane_history.png (if gnuplot is installed); prints a summary, then "key: value" lines.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "crane_operators.hpp"
 #include "crane_run.hpp"
 
 namespace {
@@ -32,6 +34,12 @@ const char* kUsage =
     "                   from the stroke cycle, instead of prescribing the stroke; 10 modes\n"
     "  --submodel-inertia  add the detail's own weight and inertia to its stresses (the\n"
     "                   paper leaves it out; off by default)\n"
+    "  --operators K    batch mode: K operators each drive their own version of the\n"
+    "                   cycle (lift height, pace, corrections), in parallel; writes\n"
+    "                   operators.csv and a line per operator (10 modes, stroke drive)\n"
+    "  --first-operator F  start the batch at operator F (default 0), to split a\n"
+    "                   campaign into ranges, e.g. the tasks of a job array\n"
+    "  --threads T      threads of the batch (default 0: one per hardware thread)\n"
     "  --output DIR     output folder (default crane-out)\n"
     "  --quiet          no progress line\n"
     "Each mode count is compiled in (a compile-time size); the accuracy study\n"
@@ -93,6 +101,7 @@ int main(int argc, char** argv) {
   crane::RunOptions o;
   auto& spec = o.spec;
   double modes = 10;
+  double operators = 0, first_operator = 0, threads = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string key = argv[i];
     if (key == "--help" || key == "-h") {
@@ -112,7 +121,8 @@ int main(int argc, char** argv) {
       continue;
     }
     const bool known = key == "--payload" || key == "--step" || key == "--density" ||
-                       key == "--stroke" || key == "--output" || key == "--modes";
+                       key == "--stroke" || key == "--output" || key == "--modes" ||
+                       key == "--operators" || key == "--first-operator" || key == "--threads";
     if (!known) {
       std::fprintf(stderr, "error: unknown option '%s'\n%s", key.c_str(), kUsage);
       return 2;
@@ -133,6 +143,15 @@ int main(int argc, char** argv) {
                std::end(crane::kSupportedModes);
     else if (key == "--density")
       ok = parse_number(key, value, spec.submodel_density) && spec.submodel_density > 0;
+    else if (key == "--operators")
+      ok = parse_number(key, value, operators) && operators >= 1 && operators <= 100000 &&
+           operators == std::floor(operators);
+    else if (key == "--first-operator")
+      ok = parse_number(key, value, first_operator) && first_operator >= 0 &&
+           first_operator <= 1e9 && first_operator == std::floor(first_operator);
+    else if (key == "--threads")
+      ok = parse_number(key, value, threads) && threads >= 0 && threads <= 1024 &&
+           threads == std::floor(threads);
     else if (key == "--stroke")
       o.stroke_file = value;
     else
@@ -164,6 +183,15 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  if (operators > 0) {
+    if (o.hydraulic || modes != 10) {
+      std::fprintf(stderr, "error: --operators is built for the stroke-driven 10-mode crane\n");
+      return 2;
+    }
+    return crane::run_operators<10, crane::fixed_storage_limit>(o, static_cast<int>(first_operator),
+                                                                static_cast<int>(operators),
+                                                                static_cast<unsigned>(threads));
+  }
   if (o.hydraulic) {
     if (modes != 10) {
       std::fprintf(stderr, "error: --hydraulic is built for the 10-mode boom only\n");

@@ -1,4 +1,5 @@
 // The crane's run with 10 boom modes (crane_run.hpp), in its own unit.
+#include "crane_operators.hpp"
 #include "crane_run.hpp"
 
 template int crane::run<10, crane::fixed_storage_limit>(const crane::RunOptions&);
@@ -6,3 +7,6 @@ template int crane::run<10, crane::fixed_storage_limit>(const crane::RunOptions&
 template crane::Result<crane::Crane<10, crane::fixed_storage_limit, double, crane::CraneEffects>>
 crane::make_stroke_crane<10, crane::fixed_storage_limit, double, crane::CraneEffects>(
     const crane::CraneSpec&, const std::vector<double>&, const std::vector<double>&);
+// The batch of operators (--operators) is built for the 10-mode crane.
+template int crane::run_operators<10, crane::fixed_storage_limit>(const crane::RunOptions&, int,
+                                                                  int, unsigned);

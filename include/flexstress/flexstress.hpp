@@ -6,6 +6,7 @@
 #include "flexstress/version.hpp"
 
 #include "flexstress/core/assert.hpp"
+#include "flexstress/core/batch.hpp"
 #include "flexstress/core/euler_parameters.hpp"
 #include "flexstress/core/precompute.hpp"
 #include "flexstress/core/scalar_traits.hpp"
@@ -25,6 +26,7 @@
 #include "flexstress/fe/dof_map.hpp"
 #include "flexstress/fe/eigen_solver.hpp"
 #include "flexstress/fe/geometric_stiffness.hpp"
+#include "flexstress/fe/gmsh_reader.hpp"
 #include "flexstress/fe/hex8.hpp"
 #include "flexstress/fe/mass_options.hpp"
 #include "flexstress/fe/material.hpp"
@@ -83,5 +85,6 @@
 #include "flexstress/fatigue/reversals.hpp"
 #include "flexstress/fatigue/sn_curve.hpp"
 #include "flexstress/fatigue/streaming_damage.hpp"
+#include "flexstress/fatigue/streaming_damage_io.hpp"
 #include "flexstress/fatigue/streaming_rainflow.hpp"
 #include "flexstress/fatigue/weld_line.hpp"

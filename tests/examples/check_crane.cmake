@@ -4,8 +4,8 @@
 # determinism (two runs write bit-identical histories), the energy balance of the work cycle
 # (work-energy theorem: |E - E0 - W_driver + D_damping| at most 1e-3 of max |E - E0|, and
 # smaller at h = 1 ms than at 2 ms), the other mode counts, the hydraulic drive (its stroke
-# within 10 % of the planned 0.2 m lift, its energy balance with the oil force's work), and bad
-# options' messages.
+# within 10 % of the planned 0.2 m lift, its energy balance with the oil force's work), the batch
+# of operators (parallel equals serial), and bad options' messages.
 #   cmake -DCRANE=<exe> -DOUT=<dir> -P check_crane.cmake
 foreach(run 1 2)
   execute_process(COMMAND "${CRANE}" --quiet --output "${OUT}/run${run}"
@@ -28,6 +28,7 @@ key(static_hotspot_MPa hot_rest)
 key(steps steps)
 key(energy_balance_rel balance)
 key(energy_balance_J balance_j)
+key(damage_per_cycle damage_single)
 # |nominal - theory| < 5 % of theory (the joints and the payload's point mass make the boom
 # differ slightly from a cantilever; measured 2.6 %). CMake has no floating point: whole MPa.
 string(REGEX REPLACE "\\..*" "" n_int "${nominal}")
@@ -101,6 +102,38 @@ if(EXTRA_MODES)
   endif()
 endif()
 
+# The batch of operators (--operators): two threads give the serial results line for line and
+# file for file, a range of operators run alone gives the same lines as in the whole batch (how a
+# job array splits a campaign), and operator 0, who drives the base cycle, has the single run's
+# damage.
+function(operator_lines var)
+  string(REGEX MATCHALL "  operator [0-9]+: [^\n]*" lines "${out}")
+  set(${var} "${lines}" PARENT_SCOPE)
+endfunction()
+run_crane(operators_serial --operators 4 --threads 1)
+operator_lines(serial)
+run_crane(operators_parallel --operators 4 --threads 2)
+operator_lines(parallel)
+key(threads threads)
+run_crane(operators_range --operators 2 --first-operator 2)
+operator_lines(range)
+list(LENGTH serial n)
+list(SUBLIST serial 2 2 serial_tail)
+list(GET serial 0 operator0)
+file(SHA256 "${OUT}/operators_serial/operators.csv" c1)
+file(SHA256 "${OUT}/operators_parallel/operators.csv" c2)
+if(NOT n EQUAL 4 OR NOT threads EQUAL 2 OR NOT serial STREQUAL parallel OR NOT c1 STREQUAL c2)
+  message(FATAL_ERROR "--operators 4: serial and parallel batches differ (threads ${threads}):\n"
+                      "${serial}\n${parallel}")
+endif()
+if(NOT range STREQUAL serial_tail)
+  message(FATAL_ERROR "operators 2 and 3 run alone differ from the whole batch:\n${range}\n${serial_tail}")
+endif()
+if(NOT operator0 MATCHES "damage per cycle ${damage_single}$")
+  message(FATAL_ERROR "operator 0 drives the base cycle: damage ${damage_single} expected: ${operator0}")
+endif()
+message(STATUS "operators:\n${out}")
+
 # Bad flags and bad stroke files: a message naming the flag or the line, a non-zero exit.
 function(expect_refusal pattern)
   execute_process(COMMAND "${CRANE}" --quiet --output "${OUT}/refused" ${ARGN}
@@ -113,6 +146,8 @@ expect_refusal("unknown option '--speed'" --speed 2)
 expect_refusal("--payload expects a number, got 'heavy'" --payload heavy)
 expect_refusal("bad value '-5' for --payload" --payload -5)
 expect_refusal("bad value '0' for --step" --step 0)
+expect_refusal("bad value '0' for --operators" --operators 0)
+expect_refusal("--operators is built for the stroke-driven 10-mode crane" --operators 2 --hydraulic)
 expect_refusal("--density needs a value" --density)
 expect_refusal("cannot open stroke file" --stroke "${OUT}/no-such-cycle.csv")
 file(WRITE "${OUT}/bad-cycle.csv" "time,stroke\n0,0\n1,0.1\n2,oops\n")

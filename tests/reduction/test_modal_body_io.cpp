@@ -155,6 +155,14 @@ TEST_CASE("damaged or foreign modal body files get errors that say what is wrong
     reseal(bytes);
     CHECK(error_of(bytes).find("eigenvalue of mode 2") != std::string::npos);
   }
+  SUBCASE("a NaN orthonormalization residual") {
+    auto bytes = good;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    // After three one-byte codes, three counts and the mass: the mass residual.
+    std::memcpy(bytes.data() + io_detail::kHeaderSize + 3 + 3 * 8 + 8, &nan, 8);
+    reseal(bytes);
+    CHECK(error_of(bytes).find("orthonormalization residuals nan") != std::string::npos);
+  }
   SUBCASE("an unknown reduction method") {
     auto bytes = good;
     bytes[io_detail::kHeaderSize] = 7;

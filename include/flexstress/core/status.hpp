@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 
@@ -121,6 +122,9 @@ inline void append_part(std::string& out, const std::string& part) {
   out += part;
 }
 inline void append_part(std::string& out, const char* part) {
+  out += part;
+}
+inline void append_part(std::string& out, std::string_view part) {
   out += part;
 }
 inline void append_part(std::string& out, char part) {

@@ -16,14 +16,12 @@
 //            the iteration matrix (nv x nv, column-major) if factorized; statistics (6 x i64).
 // The loader checks magic, version, byte order, scene, size and checksum before it touches the
 // state, and names what is wrong; a corrupted or foreign checkpoint is an error, never a crash.
-// Application data that lives outside the scene (a streaming damage meter, an energy audit) is
-// the application's to save alongside.
+// Application data that lives outside the scene is the application's to save alongside: a
+// streaming damage meter has its own checkpoint (fatigue/streaming_damage_io.hpp).
 #pragma once
 
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -37,10 +35,7 @@ namespace flexstress {
 
 namespace checkpoint_detail {
 
-inline constexpr char kMagic[8] = {'F', 'L', 'X', 'C', 'K', 'P', 'T', '1'};
-inline constexpr std::uint32_t kVersion = 1;
-inline constexpr std::uint32_t kByteOrderMark = 0x01020304u;
-inline constexpr std::size_t kHeaderSize = 8 + 4 + 4 + 8 + 8 + 8;
+inline constexpr binary::Envelope kEnvelope{"FLXCKPT1", 1, "checkpoint"};
 
 template <class T>
 void put_scalars(binary::Writer& w, const T* p, Index n) {
@@ -118,15 +113,7 @@ Result<std::vector<unsigned char>> save_checkpoint(const typename SceneT::State&
                          std::int64_t(st.last_factorizations), std::int64_t(st.over_budget)})
     w.put(v);
 
-  binary::Writer out;
-  out.buffer.insert(out.buffer.end(), checkpoint_detail::kMagic, checkpoint_detail::kMagic + 8);
-  out.put(checkpoint_detail::kVersion);
-  out.put(checkpoint_detail::kByteOrderMark);
-  out.put(scene_signature<SceneT>());
-  out.put(static_cast<std::uint64_t>(w.buffer.size()));
-  out.put(binary::fnv1a(w.buffer.data(), w.buffer.size()));
-  out.buffer.insert(out.buffer.end(), w.buffer.begin(), w.buffer.end());
-  return std::move(out.buffer);
+  return checkpoint_detail::kEnvelope.seal(scene_signature<SceneT>(), w.buffer);
 }
 
 /// Restores a checkpoint into s and the integrator (built on the same scene, with the step size
@@ -141,38 +128,16 @@ Status restore_checkpoint(const unsigned char* data, std::size_t size, typename 
   auto bad = [&](const auto&... parts) {
     return make_error(ErrorCode::bad_file_format, "'", name, "': ", parts...);
   };
-  if (size < 8 || std::memcmp(data, checkpoint_detail::kMagic, 8) != 0)
-    return bad("not a flexstress checkpoint (the first 8 bytes are not \"FLXCKPT1\")");
-  if (size < checkpoint_detail::kHeaderSize)
-    return bad("truncated header (", size, " bytes, the header alone is ",
-               checkpoint_detail::kHeaderSize, ")");
-  binary::Reader header(data + 8, checkpoint_detail::kHeaderSize - 8);
-  std::uint32_t version = 0, bom = 0;
-  std::uint64_t signature = 0, payload = 0, checksum = 0;
-  header.get(version);
-  header.get(bom);
-  header.get(signature);
-  header.get(payload);
-  header.get(checksum);
-  if (bom != checkpoint_detail::kByteOrderMark)
-    return bad("byte-order mark ", bom, " is not ", checkpoint_detail::kByteOrderMark,
-               " (written on a host of the other byte order)");
-  if (version != checkpoint_detail::kVersion)
-    return bad("format version ", version, " is not supported (this library reads version ",
-               checkpoint_detail::kVersion, ")");
-  if (signature != scene_signature<SceneT>())
-    return bad("the checkpoint is of another scene (its sizes differ from this scene's: ",
-               SceneT::num_bodies, " bodies, ", SceneT::nv, " coordinates, ", SceneT::nc,
-               " constraint equations, ", sizeof(Scalar), "-byte scalars)");
-  if (payload != size - checkpoint_detail::kHeaderSize)
-    return bad("the header announces ", payload, " bytes of data but the file holds ",
-               size - checkpoint_detail::kHeaderSize, " (truncated or padded)");
-  const unsigned char* body = data + checkpoint_detail::kHeaderSize;
-  if (binary::fnv1a(body, static_cast<std::size_t>(payload)) != checksum)
-    return bad("checksum mismatch: the data is corrupted");
+  auto opened = checkpoint_detail::kEnvelope.open(
+      data, size, scene_signature<SceneT>(), name,
+      "the checkpoint is of another scene (its sizes differ from this scene's: " +
+          std::to_string(SceneT::num_bodies) + " bodies, " + std::to_string(SceneT::nv) +
+          " coordinates, " + std::to_string(SceneT::nc) + " constraint equations, " +
+          std::to_string(sizeof(Scalar)) + "-byte scalars)");
+  if (!opened) return opened.error();
 
   // Read into copies; commit only when everything was read.
-  binary::Reader r(body, static_cast<std::size_t>(payload));
+  binary::Reader& r = *opened;
   typename SceneT::State next = s;
   typename ImplicitIntegrator<SceneT>::History h;
   integrator.save_history(h);  // sized like the integrator's
@@ -231,23 +196,16 @@ Status save_checkpoint_file(const std::string& path, const typename SceneT::Stat
                             const ImplicitIntegrator<SceneT>& integrator) {
   auto bytes = save_checkpoint(s, integrator);
   if (!bytes) return bytes.error();
-  std::ofstream out(path, std::ios::binary);
-  if (!out) return make_error(ErrorCode::io_error, "cannot open '", path, "' for writing");
-  out.write(reinterpret_cast<const char*>(bytes->data()),
-            static_cast<std::streamsize>(bytes->size()));
-  if (!out) return make_error(ErrorCode::io_error, "writing '", path, "' failed");
-  return Status::success();
+  return binary::write_file(path, *bytes);
 }
 
 /// Reads a checkpoint file into s and the integrator.
 template <class SceneT>
 Status restore_checkpoint_file(const std::string& path, typename SceneT::State& s,
                                ImplicitIntegrator<SceneT>& integrator) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error(ErrorCode::io_error, "cannot open '", path, "' for reading");
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                         std::istreambuf_iterator<char>());
-  return restore_checkpoint(bytes.data(), bytes.size(), s, integrator, path);
+  auto bytes = binary::read_file(path);
+  if (!bytes) return bytes.error();
+  return restore_checkpoint(bytes->data(), bytes->size(), s, integrator, path);
 }
 
 }  // namespace flexstress

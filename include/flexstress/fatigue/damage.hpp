@@ -46,6 +46,14 @@ class KahanSum {
     sum_ = t;
   }
   Scalar value() const noexcept { return sum_; }
+  /// The running compensation (what a checkpoint saves besides the value).
+  Scalar carry() const noexcept { return carry_; }
+  static KahanSum restored(Scalar sum, Scalar carry) noexcept {
+    KahanSum k;
+    k.sum_ = sum;
+    k.carry_ = carry;
+    return k;
+  }
 
  private:
   Scalar sum_ = Scalar(0);

@@ -110,6 +110,22 @@ class ReversalFilter {
     low_ = high_ = candidate_ = T(0);
   }
 
+  /// What the filter remembers of the history (the gate is configuration): for checkpoints.
+  struct State {
+    T low = T(0), high = T(0), candidate = T(0);
+    int direction = 0;
+    bool started = false;
+  };
+  State state() const noexcept { return State{low_, high_, candidate_, direction_, started_}; }
+  /// Sets a saved state (checked by the caller that reads it from outside).
+  void set_state(const State& s) noexcept {
+    low_ = s.low;
+    high_ = s.high;
+    candidate_ = s.candidate;
+    direction_ = s.direction;
+    started_ = s.started;
+  }
+
  private:
   T gate_;
   T low_ = T(0);   // undecided phase: smallest sample so far

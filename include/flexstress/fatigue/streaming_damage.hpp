@@ -87,6 +87,29 @@ class StreamingDamage {
     closed_ = KahanSum<Scalar>();
   }
 
+  /// The counter's history and the closed damage (compensated sum): what a checkpoint saves.
+  struct History {
+    typename Counter::History counter;
+    Scalar closed_damage = Scalar(0);
+    Scalar closed_carry = Scalar(0);
+  };
+  History history() const noexcept {
+    return History{counter_.history(), closed_.value(), closed_.carry()};
+  }
+
+  /// Continues from a saved history (checked as StreamingRainflow::restore_history does; the
+  /// damage must be finite and non-negative). On error nothing changes.
+  Status restore_history(const History& h) {
+    using std::isfinite;
+    if (!(isfinite(h.closed_damage) && h.closed_damage >= Scalar(0) && isfinite(h.closed_carry)))
+      return make_error(ErrorCode::invalid_argument, "damage meter history: closed damage ",
+                        h.closed_damage, " (carry ", h.closed_carry,
+                        ") is not a finite non-negative number");
+    if (Status s = counter_.restore_history(h.counter); !s) return s;
+    closed_ = KahanSum<Scalar>::restored(h.closed_damage, h.closed_carry);
+    return Status::success();
+  }
+
  private:
   StreamingDamage(const Counter& counter, const DamageModel<Scalar>& model)
       : counter_(counter), model_(model) {}

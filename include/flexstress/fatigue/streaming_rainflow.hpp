@@ -149,6 +149,77 @@ class StreamingRainflow {
     closed_cycles_ = 0;
   }
 
+  /// Everything the counter has accumulated (not its grid and gate): what a checkpoint saves.
+  struct History {
+    typename ReversalFilter<int>::State filter;
+    std::array<int, residue_capacity> residue{};
+    int size = 0;
+    std::uint64_t samples = 0;
+    std::uint64_t closed_cycles = 0;
+  };
+  History history() const noexcept {
+    return History{filter_.state(), residue_, size_, samples_, closed_cycles_};
+  }
+
+  /// Continues from a saved history. It must be one this counter could have reached: class
+  /// indices in the grid, a residue of alternating reversals in which the four-point rule closes
+  /// nothing (so the bound 2N - 1 holds), a pending reversal that continues the residue, and
+  /// counts that fit the samples. Otherwise an error names the first defect and nothing changes.
+  Status restore_history(const History& h) {
+    auto bad = [](const auto&... parts) {
+      return make_error(ErrorCode::invalid_argument, "rainflow history: ", parts...);
+    };
+    auto in_grid = [](int c) { return c >= 0 && c < NClasses; };
+    const auto& f = h.filter;
+    if (h.size < 0 || h.size >= residue_capacity)
+      return bad("residue of ", h.size, " reversals (", NClasses, " classes allow 0 to ",
+                 residue_capacity - 1, ")");
+    for (int i = 0; i < h.size; ++i) {
+      const int c = h.residue[static_cast<std::size_t>(i)];
+      if (!in_grid(c))
+        return bad("residue reversal ", i, " is class ", c, ", outside the ", NClasses, " classes");
+      if (i >= 1 && c == h.residue[static_cast<std::size_t>(i - 1)])
+        return bad("residue reversals ", i - 1, " and ", i, " are equal");
+      if (i >= 2 && (c > h.residue[static_cast<std::size_t>(i - 1)]) ==
+                        (h.residue[static_cast<std::size_t>(i - 1)] >
+                         h.residue[static_cast<std::size_t>(i - 2)]))
+        return bad("residue reversals ", i - 2, " to ", i, " do not alternate");
+      if (i >= 3) {
+        const int* s = h.residue.data() + i - 3;
+        const int z = abs_diff(s[1], s[0]), y = abs_diff(s[2], s[1]), x = abs_diff(s[3], s[2]);
+        if (y <= x && y <= z)
+          return bad("residue range ", i - 2, " to ", i - 1,
+                     " is a closed cycle (four-point rule)");
+      }
+    }
+    if (f.direction < -1 || f.direction > 1 || (!f.started && f.direction != 0))
+      return bad("reversal filter direction ", f.direction, f.started ? "" : " before any sample");
+    if (f.started && (!in_grid(f.low) || !in_grid(f.high) || !in_grid(f.candidate)))
+      return bad("reversal filter classes ", f.low, ", ", f.high, ", ", f.candidate,
+                 " outside the ", NClasses, " classes");
+    if ((f.direction == 0) != (h.size == 0))
+      return bad(f.direction == 0 ? "no pending reversal after " : "a pending reversal with ",
+                 h.size, " confirmed ones");
+    if (h.size >= 1 && f.direction != 0) {
+      const int last = h.residue[static_cast<std::size_t>(h.size - 1)];
+      const bool continues =
+          f.direction * (f.candidate - last) > filter_.gate() &&
+          (h.size < 2 ||
+           (last > h.residue[static_cast<std::size_t>(h.size - 2)]) == (f.direction < 0));
+      if (!continues)
+        return bad("pending reversal class ", f.candidate, " does not continue the residue");
+    }
+    if (2 * h.closed_cycles + static_cast<std::uint64_t>(h.size) > h.samples)
+      return bad(h.closed_cycles, " closed cycles and ", h.size, " residue reversals from ",
+                 h.samples, " samples");
+    filter_.set_state(f);
+    residue_ = h.residue;
+    size_ = h.size;
+    samples_ = h.samples;
+    closed_cycles_ = h.closed_cycles;
+    return Status::success();
+  }
+
  private:
   StreamingRainflow(const ClassGrid<Scalar>& grid, int gate_classes)
       : grid_(grid), filter_(gate_classes) {}

@@ -18,8 +18,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -210,6 +208,10 @@ inline Result<ModalBodyData> deserialize(const unsigned char* data, std::size_t 
   };
   if (!(std::isfinite(d.inertia.mass) && d.inertia.mass > 0))
     return bad("mass ", d.inertia.mass, " is not a positive number");
+  if (!(d.mass_residual >= 0 && std::isfinite(d.mass_residual) && d.stiffness_residual >= 0 &&
+        std::isfinite(d.stiffness_residual)))
+    return bad("orthonormalization residuals ", d.mass_residual, " and ", d.stiffness_residual,
+               " are not non-negative numbers");
   for (std::size_t a = 0; a < d.inertia.first.size(); ++a)
     if (!finite(d.inertia.first[a])) return bad("non-finite first moment S_", a);
   for (std::size_t a = 0; a < d.inertia.second.size(); ++a)
@@ -232,22 +234,14 @@ inline Result<ModalBodyData> deserialize(const unsigned char* data, std::size_t 
 inline Status save_modal_body(const ModalBodyData& d, const std::string& path) {
   auto bytes = serialize(d);
   if (!bytes) return bytes.error();
-  std::ofstream out(path, std::ios::binary);
-  if (!out) return make_error(ErrorCode::io_error, "cannot open '", path, "' for writing");
-  out.write(reinterpret_cast<const char*>(bytes->data()),
-            static_cast<std::streamsize>(bytes->size()));
-  if (!out) return make_error(ErrorCode::io_error, "writing '", path, "' failed");
-  return Status::success();
+  return binary::write_file(path, *bytes);
 }
 
 /// Reads a file written by save_modal_body; every defect is an error naming the file.
 inline Result<ModalBodyData> load_modal_body(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error(ErrorCode::io_error, "cannot open '", path, "' for reading");
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                         std::istreambuf_iterator<char>());
-  if (in.bad()) return make_error(ErrorCode::io_error, "reading '", path, "' failed");
-  return deserialize(bytes.data(), bytes.size(), "'" + path + "'");
+  auto bytes = binary::read_file(path);
+  if (!bytes) return bytes.error();
+  return deserialize(bytes->data(), bytes->size(), "'" + path + "'");
 }
 
 }  // namespace flexstress::reduction

@@ -60,18 +60,10 @@ template <int N, int StorageLimit>
 int run_operators(const RunOptions& o, int first, int count, unsigned threads) {
   using Scene = CraneScene<N, StorageLimit, double, CraneEffects>;
   using Clock = std::chrono::steady_clock;
-  auto made = make_crane<N, StorageLimit, double, CraneEffects>(o.spec, o.t, o.ds);
-  if (!made) {
-    std::fprintf(stderr, "error: %s\n", made.error().what().c_str());
-    return 1;
-  }
+  auto made = build_crane<N, StorageLimit>(o);
+  if (!made) return 1;
   const auto& crane = *made;  // shared by every job, read only
-  auto curve = fatigue::iiw_normal_curve(100.0, fatigue::IiwBeyondKnee::haibach);
-  if (!curve) return 1;
-  auto model = fatigue::DamageModel<double>::create(*curve);
-  auto grid = fatigue::ClassGrid<double>::create(-400.0, 400.0, 128);
-  if (!model || !grid) return 1;
-  const auto meter = fatigue::StreamingDamage<double, 128>::create(*grid, 0, *model);
+  const auto meter = make_damage_meter();
   if (!meter) return 1;
   typename ImplicitIntegrator<Scene>::Settings settings;
   settings.step = o.step;

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <flexstress/dynamics/energy_audit.hpp>
@@ -63,6 +64,31 @@ extern template int run<10, fixed_storage_limit, CraneHydraulicEffects>(const Ru
   extern template int run<n, storage_limit(n)>(const RunOptions&);
 FLEXSTRESS_CRANE_EXTRA_MODE_LIST(FLEXSTRESS_CRANE_EXTERN_RUN)
 #undef FLEXSTRESS_CRANE_EXTERN_RUN
+
+/// The damage meter of every crane run: IIW hot-spot FAT 100, slope 3 to the knee at 1e7 and
+/// Haibach (5) beyond, as IIW recommends for variable amplitude; streaming rainflow on 128
+/// classes over +-400 MPa.
+using DamageMeter = fatigue::StreamingDamage<double, 128>;
+inline Result<DamageMeter> make_damage_meter() {
+  auto curve = fatigue::iiw_normal_curve(100.0, fatigue::IiwBeyondKnee::haibach);
+  if (!curve) return curve.error();
+  auto model = fatigue::DamageModel<double>::create(*curve);
+  if (!model) return model.error();
+  auto grid = fatigue::ClassGrid<double>::create(-400.0, 400.0, 128);
+  if (!grid) return grid.error();
+  return DamageMeter::create(*grid, 0, *model);
+}
+
+/// make_crane for the run's options; its error, if any, goes to stderr.
+template <int N, int StorageLimit, class EffectList = CraneEffects>
+std::optional<Crane<N, StorageLimit, double, EffectList>> build_crane(const RunOptions& o) {
+  auto made = make_crane<N, StorageLimit, double, EffectList>(o.spec, o.t, o.ds);
+  if (!made) {
+    std::fprintf(stderr, "error: %s\n", made.error().what().c_str());
+    return std::nullopt;
+  }
+  return std::move(*made);
+}
 
 namespace detail {
 
@@ -140,20 +166,7 @@ int run(const RunOptions& o) {
   // The energy balance of the run (dynamics/energy_audit.hpp): E - E(0) - W_driver + D_damping.
   EnergyAudit<Scene> audit(scene);
   audit.start(s);
-  // Fatigue: IIW hot-spot FAT 100, slope 3 to the knee at 1e7 and Haibach (5) beyond, as IIW
-  // recommends for variable amplitude; streaming rainflow on 128 classes.
-  auto curve = fatigue::iiw_normal_curve(100.0, fatigue::IiwBeyondKnee::haibach);
-  if (!curve) {
-    std::fprintf(stderr, "error: %s\n", curve.error().what().c_str());
-    return 1;
-  }
-  auto model = fatigue::DamageModel<double>::create(*curve);
-  auto grid = fatigue::ClassGrid<double>::create(-400.0, 400.0, 128);
-  if (!model || !grid) {
-    std::fprintf(stderr, "error: fatigue setup failed\n");
-    return 1;
-  }
-  auto meter = fatigue::StreamingDamage<double, 128>::create(*grid, 0, *model);
+  auto meter = make_damage_meter();
   if (!meter) {
     std::fprintf(stderr, "error: %s\n", meter.error().what().c_str());
     return 1;

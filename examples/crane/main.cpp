@@ -14,6 +14,7 @@
 
 #include "crane_operators.hpp"
 #include "crane_run.hpp"
+#include "game_loop.hpp"
 
 namespace {
 
@@ -40,6 +41,13 @@ const char* kUsage =
     "  --first-operator F  start the batch at operator F (default 0), to split a\n"
     "                   campaign into ranges, e.g. the tasks of a job array\n"
     "  --threads T      threads of the batch (default 0: one per hardware thread)\n"
+    "  --game-loop      run the cycle in a fixed-step game loop: frames at their own\n"
+    "                   rate, states interpolated for display, the boom's deformed shape\n"
+    "                   at render vertices and a live damage read-out; writes\n"
+    "                   game_loop.csv (10 modes, stroke drive)\n"
+    "  --render-hz HZ   the game loop's frame rate (default 60)\n"
+    "  --realtime       pace the game loop's frames by the wall clock (default: a\n"
+    "                   simulated clock with jitter, reproducible)\n"
     "  --output DIR     output folder (default crane-out)\n"
     "  --quiet          no progress line\n"
     "Each mode count is compiled in (a compile-time size); the accuracy study\n"
@@ -101,7 +109,8 @@ int main(int argc, char** argv) {
   crane::RunOptions o;
   auto& spec = o.spec;
   double modes = 10;
-  double operators = 0, first_operator = 0, threads = 0;
+  double operators = 0, first_operator = 0, threads = 0, render_hz = 60;
+  bool game_loop = false, realtime = false;
   for (int i = 1; i < argc; ++i) {
     const std::string key = argv[i];
     if (key == "--help" || key == "-h") {
@@ -116,13 +125,18 @@ int main(int argc, char** argv) {
       o.hydraulic = true;
       continue;
     }
+    if (key == "--game-loop" || key == "--realtime") {
+      (key == "--game-loop" ? game_loop : realtime) = true;
+      continue;
+    }
     if (key == "--submodel-inertia") {
       o.with_inertia = true;
       continue;
     }
     const bool known = key == "--payload" || key == "--step" || key == "--density" ||
                        key == "--stroke" || key == "--output" || key == "--modes" ||
-                       key == "--operators" || key == "--first-operator" || key == "--threads";
+                       key == "--operators" || key == "--first-operator" || key == "--threads" ||
+                       key == "--render-hz";
     if (!known) {
       std::fprintf(stderr, "error: unknown option '%s'\n%s", key.c_str(), kUsage);
       return 2;
@@ -152,6 +166,8 @@ int main(int argc, char** argv) {
     else if (key == "--threads")
       ok = parse_number(key, value, threads) && threads >= 0 && threads <= 1024 &&
            threads == std::floor(threads);
+    else if (key == "--render-hz")
+      ok = parse_number(key, value, render_hz) && render_hz >= 1 && render_hz <= 1000;
     else if (key == "--stroke")
       o.stroke_file = value;
     else
@@ -183,6 +199,14 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  if (game_loop) {
+    if (o.hydraulic || modes != 10 || operators > 0) {
+      std::fprintf(stderr,
+                   "error: --game-loop is built for the stroke-driven 10-mode crane, alone\n");
+      return 2;
+    }
+    return crane::run_game_loop<10, crane::fixed_storage_limit>(o, render_hz, realtime);
+  }
   if (operators > 0) {
     if (o.hydraulic || modes != 10) {
       std::fprintf(stderr, "error: --operators is built for the stroke-driven 10-mode crane\n");

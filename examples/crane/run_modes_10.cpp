@@ -1,6 +1,7 @@
 // The crane's run with 10 boom modes (crane_run.hpp), in its own unit.
 #include "crane_operators.hpp"
 #include "crane_run.hpp"
+#include "game_loop.hpp"
 
 template int crane::run<10, crane::fixed_storage_limit>(const crane::RunOptions&);
 // The stroke-driven crane the hydraulic one starts from (run_hydraulic_10.cpp uses this one).
@@ -10,3 +11,6 @@ crane::make_stroke_crane<10, crane::fixed_storage_limit, double, crane::CraneEff
 // The batch of operators (--operators) is built for the 10-mode crane.
 template int crane::run_operators<10, crane::fixed_storage_limit>(const crane::RunOptions&, int,
                                                                   int, unsigned);
+// The game loop (--game-loop) is built for the 10-mode crane.
+template int crane::run_game_loop<10, crane::fixed_storage_limit>(const crane::RunOptions&, double,
+                                                                  bool);

@@ -67,6 +67,7 @@
 #include "flexstress/dynamics/scene.hpp"
 #include "flexstress/dynamics/static_equilibrium.hpp"
 
+#include "flexstress/stress/deformed_shape.hpp"
 #include "flexstress/stress/fused_stress.hpp"
 #include "flexstress/stress/host_point.hpp"
 #include "flexstress/stress/hot_spot.hpp"

@@ -3,9 +3,11 @@
 // as modes are added, and the stability theory of the integrators (A-stable implicit, RK4
 // bounded by h w <= 2.78).
 #include <cmath>
+#include <vector>
 
 #include <doctest/doctest.h>
 
+#include <flexstress/dynamics/checkpoint.hpp>
 #include <flexstress/dynamics/explicit_integrator.hpp>
 #include <flexstress/dynamics/implicit_integrator.hpp>
 #include <flexstress/dynamics/linearize.hpp>
@@ -177,6 +179,63 @@ TEST_CASE("explicit RK4 agrees with the implicit integrator on a non-stiff flexi
                       (a.coordinates<0>().theta - b.coordinates<0>().theta).norm();
   MESSAGE("RK4 vs generalized-alpha after " << a.t << " s: " << diff);
   CHECK(diff < 1e-4);
+}
+
+TEST_CASE("an explicit (RK4) run restored from its checkpoint continues bit-identically") {
+  // Reference: the run that never stopped. RK4 starts each step from the State alone, so the
+  // state (modal coordinates included) is all a checkpoint needs.
+  constexpr int N = 2;
+  auto beam = hinged_beam(N);
+  auto scene = make_hinged<Hinged<N>>(beam.data, beam.interface_nodes[0]);
+  ExplicitIntegrator<Hinged<N>>::Settings es;
+  es.step = 0.5 / scene.max_modal_frequency();
+  ExplicitIntegrator<Hinged<N>> rk4(scene, es);
+  Hinged<N>::State a;
+  std::vector<unsigned char> bytes;
+  for (int i = 0; i < 200; ++i) {
+    if (i == 80) {
+      auto saved = save_checkpoint(a, rk4);
+      REQUIRE(saved.ok());
+      bytes = *saved;
+    }
+    REQUIRE(rk4.step(a) == StepStatus::ok);
+  }
+  ExplicitIntegrator<Hinged<N>> resumed(scene, es);
+  Hinged<N>::State b;  // a fresh state: everything comes from the checkpoint
+  REQUIRE(restore_checkpoint(bytes.data(), bytes.size(), b, resumed).ok());
+  for (int i = 80; i < 200; ++i) REQUIRE(resumed.step(b) == StepStatus::ok);
+  CHECK(b.t == a.t);
+  CHECK(b.coordinates<0>().position == a.coordinates<0>().position);
+  CHECK(b.coordinates<0>().theta == a.coordinates<0>().theta);
+  CHECK(b.coordinates<0>().p == a.coordinates<0>().p);
+  CHECK(b.coordinates<0>().p.norm() > 0.0);  // the beam did deform
+  CHECK(b.v == a.v);
+
+  // Each integrator refuses the other's checkpoint, saying whose it is; another step size is
+  // refused too.
+  ImplicitIntegrator<Hinged<N>>::Settings is;
+  is.step = es.step;
+  ImplicitIntegrator<Hinged<N>> gen(scene, is);
+  Hinged<N>::State c;
+  REQUIRE(gen.initialize(c).ok());
+  auto implicit_bytes = save_checkpoint(c, gen);
+  REQUIRE(implicit_bytes.ok());
+  Hinged<N>::State d;
+  const Status into_explicit =
+      restore_checkpoint(implicit_bytes->data(), implicit_bytes->size(), d, resumed, "gen.ckpt");
+  REQUIRE_FALSE(into_explicit.ok());
+  CHECK(into_explicit.error().message ==
+        "'gen.ckpt': an implicit-integrator checkpoint: restore it into an ImplicitIntegrator");
+  const Status into_implicit = restore_checkpoint(bytes.data(), bytes.size(), d, gen, "rk4.ckpt");
+  REQUIRE_FALSE(into_implicit.ok());
+  CHECK(into_implicit.error().message ==
+        "'rk4.ckpt': an explicit-integrator checkpoint: restore it into an ExplicitIntegrator");
+  es.step /= 2;
+  ExplicitIntegrator<Hinged<N>> finer(scene, es);
+  const Status other_step = restore_checkpoint(bytes.data(), bytes.size(), d, finer, "rk4.ckpt");
+  REQUIRE_FALSE(other_step.ok());
+  CHECK(other_step.error().message.find("'rk4.ckpt': taken with the step h = ") == 0);
+  CHECK(d.t == 0.0);  // untouched
 }
 
 TEST_CASE("static equilibrium of a clamped flexible cantilever matches the FE static solution") {

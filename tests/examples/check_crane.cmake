@@ -5,7 +5,8 @@
 # (work-energy theorem: |E - E0 - W_driver + D_damping| at most 1e-3 of max |E - E0|, and
 # smaller at h = 1 ms than at 2 ms), the other mode counts, the hydraulic drive (its stroke
 # within 10 % of the planned 0.2 m lift, its energy balance with the oil force's work), the batch
-# of operators (parallel equals serial), and bad options' messages.
+# of operators (parallel equals serial), the game loop (rendering does not change the physics),
+# and bad options' messages.
 #   cmake -DCRANE=<exe> -DOUT=<dir> -P check_crane.cmake
 foreach(run 1 2)
   execute_process(COMMAND "${CRANE}" --quiet --output "${OUT}/run${run}"
@@ -134,6 +135,19 @@ if(NOT operator0 MATCHES "damage per cycle ${damage_single}$")
 endif()
 message(STATUS "operators:\n${out}")
 
+# The game loop (--game-loop): frames at 60 Hz with jitter, fixed steps of 1 ms in between.
+# The rendering must not change the physics: the same 11000 steps and the single run's damage.
+run_crane(game_loop --game-loop)
+key(steps loop_steps)
+key(frames frames)
+key(max_steps_per_frame most_steps)
+key(damage_per_cycle loop_damage)
+if(NOT loop_steps EQUAL 11000 OR NOT loop_damage STREQUAL damage_single OR frames LESS 600 OR
+   frames GREATER 720 OR most_steps GREATER 23 OR NOT EXISTS "${OUT}/game_loop/game_loop.csv")
+  message(FATAL_ERROR "--game-loop: ${loop_steps} steps, ${frames} frames, up to ${most_steps} "
+                      "steps a frame, damage ${loop_damage} (single run ${damage_single})")
+endif()
+
 # Bad flags and bad stroke files: a message naming the flag or the line, a non-zero exit.
 function(expect_refusal pattern)
   execute_process(COMMAND "${CRANE}" --quiet --output "${OUT}/refused" ${ARGN}
@@ -148,6 +162,8 @@ expect_refusal("bad value '-5' for --payload" --payload -5)
 expect_refusal("bad value '0' for --step" --step 0)
 expect_refusal("bad value '0' for --operators" --operators 0)
 expect_refusal("--operators is built for the stroke-driven 10-mode crane" --operators 2 --hydraulic)
+expect_refusal("--game-loop is built for the stroke-driven 10-mode crane" --game-loop --hydraulic)
+expect_refusal("bad value '0' for --render-hz" --render-hz 0)
 expect_refusal("--density needs a value" --density)
 expect_refusal("cannot open stroke file" --stroke "${OUT}/no-such-cycle.csv")
 file(WRITE "${OUT}/bad-cycle.csv" "time,stroke\n0,0\n1,0.1\n2,oops\n")

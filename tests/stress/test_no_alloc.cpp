@@ -5,6 +5,7 @@
 // by a replaced operator new; Eigen's own guard (EIGEN_RUNTIME_NO_MALLOC) aborts on any Eigen
 // heap allocation in builds with assertions (the sanitizer build in CI).
 #include <cmath>
+#include <vector>
 
 #include <doctest/doctest.h>
 
@@ -13,6 +14,7 @@
 #include <flexstress/dynamics/implicit_integrator.hpp>
 #include <flexstress/fe/rhs_attachment_mesh.hpp>
 #include <flexstress/reduction/modal_geometric_stiffness.hpp>
+#include <flexstress/stress/deformed_shape.hpp>
 #include <flexstress/stress/fused_stress.hpp>
 #include <flexstress/stress/host_point.hpp>
 #include <flexstress/stress/modal_stress_modes.hpp>
@@ -148,6 +150,21 @@ TEST_CASE("a flexible scene's steps and the stress recovery allocate nothing") {
   CHECK(s.t == doctest::Approx(0.201).epsilon(1e-9));  // all 200 steps ran
   CHECK(std::isfinite(checksum));
   CHECK(explicit_steps_allocate(scene) == 0);
+}
+
+TEST_CASE("the deformed shape at render vertices allocates nothing per frame") {
+  const auto host = hinged_host();
+  std::vector<Vector3d> vertices;
+  for (int i = 0; i <= 48; ++i) vertices.emplace_back(0.025 * i, 0.075, 0.0);  // top flange
+  auto shape = stress::DeformedShape<N>::along_beam(host.data, host.line.nodes, vertices);
+  REQUIRE(shape.ok());
+  Eigen::Matrix3Xd out(3, shape->size());
+  const Vec<double, N> p = Vec<double, N>::LinSpaced(1e-3, 4e-3);
+  const Vec4<double> theta(std::cos(0.1), 0, 0, std::sin(0.1));
+  NoAllocationScope scope;
+  for (int frame = 0; frame < 100; ++frame) shape->evaluate(Vector3d(1, 2, 3), theta, p, out);
+  CHECK(scope.count() == 0);
+  CHECK(out.allFinite());
 }
 
 TEST_CASE("with dynamic storage (allocated once at setup) the steps allocate nothing either") {

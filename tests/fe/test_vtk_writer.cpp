@@ -14,6 +14,7 @@
 #include <doctest/doctest.h>
 
 #include <flexstress/fe/assembly.hpp>
+#include <flexstress/fe/box_mesh.hpp>
 #include <flexstress/fe/rhs_attachment_mesh.hpp>
 #include <flexstress/fe/static_solver.hpp>
 #include <flexstress/fe/vtk_writer.hpp>
@@ -181,6 +182,36 @@ TEST_CASE("VTK: a small mixed mesh with known fields reads back exactly with VTK
     CHECK(ids[static_cast<std::size_t>(c)] == static_cast<double>(c));
     for (int k = 0; k < 3; ++k) CHECK(vec[static_cast<std::size_t>(3 * c + k)] == cell_vec(k, c));
   }
+}
+
+TEST_CASE("VTK: averaging links are drawn as lines from the reference to each face node") {
+  // One brick and an averaging link from a node beyond its x = 1 face to that face's corners.
+  Mesh mesh;
+  BoxMeshSpec spec;
+  spec.material = mesh.add_material(steel());
+  const BoxMesh box = *add_box_mesh(mesh, spec);
+  const std::vector<Index> face = {box.node(1, 0, 0), box.node(1, 1, 0), box.node(1, 1, 1),
+                                   box.node(1, 0, 1)};
+  const Index reference = mesh.add_node(Vector3d(1.5, 0.5, 0.5));
+  mesh.add_averaging_link(reference, face);
+  VtkOptions options;
+  CHECK(vtk_num_cells(mesh, options) == 1);  // off by default, like rigid links
+  options.averaging_links = true;
+  CHECK(vtk_num_cells(mesh, options) == 1 + 4);
+  auto dofs = DofMap::build(mesh);
+  REQUIRE(dofs.ok());
+  auto data = standard_fields(mesh, *dofs, VectorXd::Zero(dofs->size()));
+  REQUIRE(data.ok());
+  const std::string path = std::string(FLEXSTRESS_TEST_OUTPUT_DIR) + "/fe_averaging_link.vtu";
+  REQUIRE(write_vtu(path, mesh, *data, options).ok());
+  auto back = read_back(path);
+  CHECK(back["types"] == std::vector<std::string>{"12", "3", "3", "3", "3"});
+  std::vector<std::string> conn{"8"};
+  for (Index n : mesh.hexes()[0].nodes) conn.push_back(std::to_string(n));
+  for (Index f : face)
+    for (const std::string& t : {std::string("2"), std::to_string(reference), std::to_string(f)})
+      conn.push_back(t);
+  CHECK(back["connectivity"] == conn);
 }
 
 TEST_CASE("VTK: the RHS sub-model under bending (the file docs/fe.md renders)") {

@@ -7,7 +7,9 @@
 //  1. bricks as VTK_HEXAHEDRON (12); VTK's node order is the Hex8Element order (Hughes);
 //  2. beams as VTK_LINE (3);
 //  3. point masses as VTK_VERTEX (1), if VtkOptions::point_masses;
-//  4. one VTK_LINE per rigid-link slave (master to slave), if VtkOptions::rigid_links.
+//  4. one VTK_LINE per rigid-link slave (master to slave), if VtkOptions::rigid_links;
+//  5. one VTK_LINE per averaging-link face node (reference to face node), if
+//     VtkOptions::averaging_links.
 // vtk_num_cells() gives the count, which cell fields must match. Six-component fields are read
 // by ParaView as symmetric tensors in the order XX, YY, ZZ, XY, YZ, XZ, which is flexstress's
 // Voigt order (xx, yy, zz, xy, yz, zx). Numbers are written with 17 significant digits, so a
@@ -49,6 +51,8 @@ struct VtkData {
 struct VtkOptions {
   bool point_masses = true;  ///< write point masses as VTK_VERTEX cells
   bool rigid_links = false;  ///< write rigid links as VTK_LINE cells, master to each slave
+  /// write averaging (RBE3) links as VTK_LINE cells, reference to each face node
+  bool averaging_links = false;
 };
 
 /// VTK cell type ids used here (vtkCellType.h).
@@ -61,6 +65,8 @@ Index vtk_num_cells(const Mesh& mesh, const VtkOptions& options = {}) {
   if (options.point_masses) n += static_cast<Index>(mesh.point_masses().size());
   if (options.rigid_links)
     for (const auto& l : mesh.rigid_links()) n += static_cast<Index>(l.slaves.size());
+  if (options.averaging_links)
+    for (const auto& l : mesh.averaging_links()) n += static_cast<Index>(l.face.size());
   return n;
 }
 
@@ -163,6 +169,9 @@ Status write_vtu(const std::string& path, const Mesh& mesh, const VtkData& data 
   if (options.rigid_links)
     for (const auto& l : mesh.rigid_links())
       for (Index s : l.slaves) cell(VtkCellType::line, {l.master, s});
+  if (options.averaging_links)
+    for (const auto& l : mesh.averaging_links())
+      for (Index f : l.face) cell(VtkCellType::line, {l.reference, f});
 
   std::FILE* out = std::fopen(path.c_str(), "w");
   if (out == nullptr)

@@ -32,6 +32,8 @@ endif()
 add_library(flexstress_precompute_instances OBJECT
   "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances.cpp")
 target_link_libraries(flexstress_precompute_instances PUBLIC flexstress::flexstress flexstress_dev_flags)
+# Position-independent: the crane's C interface links it into a shared library.
+set_target_properties(flexstress_precompute_instances PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 # With PCH, the extern declarations come from a precompiled header (flexstress.hpp, then
 # precompute_instances.hpp), which must be the first thing a unit includes.

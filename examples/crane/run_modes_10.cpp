@@ -1,6 +1,7 @@
 // The crane's run with 10 boom modes (crane_run.hpp), in its own unit.
 #include "crane_operators.hpp"
 #include "crane_run.hpp"
+#include "crane_session_impl.hpp"  // the session behind the C interface (c_api/)
 #include "game_loop.hpp"
 
 template int crane::run<10, crane::fixed_storage_limit>(const crane::RunOptions&);

@@ -6,7 +6,7 @@
 # smaller at h = 1 ms than at 2 ms), the other mode counts, the hydraulic drive (its stroke
 # within 10 % of the planned 0.2 m lift, its energy balance with the oil force's work), the batch
 # of operators (parallel equals serial), the game loop (rendering does not change the physics),
-# and bad options' messages.
+# the C interface (the same run through c_api/), and bad options' messages.
 #   cmake -DCRANE=<exe> -DOUT=<dir> -P check_crane.cmake
 foreach(run 1 2)
   execute_process(COMMAND "${CRANE}" --quiet --output "${OUT}/run${run}"
@@ -147,6 +147,23 @@ if(NOT loop_steps EQUAL 11000 OR NOT loop_damage STREQUAL damage_single OR frame
   message(FATAL_ERROR "--game-loop: ${loop_steps} steps, ${frames} frames, up to ${most_steps} "
                       "steps a frame, damage ${loop_damage} (single run ${damage_single})")
 endif()
+
+# The C interface (c_api/flexstress_crane.h), driven by a C program: the same crane, so the same
+# 11000 steps, hot-spot maximum and damage as the program's single run; a bad option refused with
+# a message naming the field.
+execute_process(COMMAND "${CRANE_C_DEMO}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "crane_c_demo failed (${rc}):\n${out}\n${err}")
+endif()
+key(steps c_steps)
+key(hotspot_max_MPa c_hot_max)
+key(damage_per_cycle c_damage)
+if(NOT c_steps EQUAL 11000 OR NOT c_hot_max STREQUAL hot_max OR NOT c_damage STREQUAL damage_single
+   OR NOT out MATCHES "refused: fs_crane_options.payload_kg = -5.000000: must be finite and >= 0")
+  message(FATAL_ERROR "the C interface differs from the program: ${c_steps} steps, hot spot "
+                      "max ${c_hot_max} (${hot_max}), damage ${c_damage} (${damage_single}):\n${out}")
+endif()
+message(STATUS "C interface:\n${out}")
 
 # Bad flags and bad stroke files: a message naming the flag or the line, a non-zero exit.
 function(expect_refusal pattern)

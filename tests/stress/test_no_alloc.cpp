@@ -1,7 +1,7 @@
 // The real-time path allocates nothing: an implicit and an explicit step of a flexible scene
 // (also with geometric stiffening, and with the energy audit recording each step), and the
 // per-step stress recovery (fused rows, the influence form, a principal stress, the whole field
-// from modal stress modes). Counted
+// from modal stress modes), and joints switched at runtime. Counted
 // by a replaced operator new; Eigen's own guard (EIGEN_RUNTIME_NO_MALLOC) aborts on any Eigen
 // heap allocation in builds with assertions (the sanitizer build in CI).
 #include <cmath>
@@ -186,6 +186,24 @@ TEST_CASE("with dynamic storage (allocated once at setup) the steps allocate not
   CHECK(counted == 0);
   CHECK(s.t == doctest::Approx(0.201).epsilon(1e-9));
   CHECK(explicit_steps_allocate(scene) == 0);
+
+  // Runtime changes: the hinge freed, then anchored where the body has flown and switched on
+  // again (a capture); the steps that follow restart the integrator, without allocating either.
+  Dynamic changing = scene;
+  ImplicitIntegrator<Dynamic> restarting(changing);
+  REQUIRE(restarting.initialize(s).ok());
+  bool all_ok = true;
+  {
+    NoAllocationScope scope;
+    changing.set_joint_active<0>(false);
+    for (int i = 0; i < 20; ++i) all_ok = all_ok && restarting.step(s) == StepStatus::ok;
+    changing.anchor_joint_at<0>(s, restarting.workspace());
+    changing.set_joint_active<0>(true);
+    for (int i = 0; i < 20; ++i) all_ok = all_ok && restarting.step(s) == StepStatus::ok;
+    counted = scope.count();
+  }
+  CHECK(all_ok);
+  CHECK(counted == 0);
 }
 
 TEST_CASE("geometric stiffening and the energy audit allocate nothing per step either") {

@@ -44,6 +44,7 @@ class ConstrainedAccelerations {
   /// Evaluates the scene at s (into w) and solves for v_dot and lambda (in s). Returns the
   /// final acceleration-constraint residual (infinity norm).
   Scalar solve(const SceneT& scene, State& s, Workspace& w, const Settings& set) {
+    scene.clear_inactive_multipliers(s.lambda);  // switched-off joints carry no reaction
     scene.evaluate(s, w);
     matrix_.setZero();
     scene.mass_blocks(w, matrix_);

@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -208,7 +209,9 @@ class ImplicitIntegrator {
     have_factorization_ = false;
     s.lambda.setZero();
     for (int it = 0; it < max_iterations; ++it) {
-      r_ = ws_.force - ws_.jac.transpose() * (s.lambda + alpha_ * ws_.conv);
+      e_ = s.lambda + alpha_ * ws_.conv;
+      r_ = ws_.force;
+      r_.noalias() -= ws_.jac.transpose() * e_;  // no temporary: initialize() also runs mid-run
       s.v_dot = llt_.solve(r_);
       e_.noalias() = ws_.jac * s.v_dot;  // product alone: no temporary
       e_ += ws_.conv;
@@ -217,12 +220,20 @@ class ImplicitIntegrator {
     }
     s.a = s.v_dot;
     has_previous_ = false;
+    revision_ = scene_->revision();
     return Status::success();
   }
 
   /// One step of size h. Never allocates or throws. On failure the state is left as it was
   /// before the step (except for constraint_violation, which keeps the step).
   StepStatus step(State& s) {
+    // The model changed at runtime (a joint switched or anchored): restart from the state as
+    // it is, as initialize() does. The accelerations jump with the forces at this instant, and a
+    // step started from the old ones would smear the jump over the step (generalized-alpha
+    // evaluates at t + (1 - af) h), an O(h) error in velocity; a joint switched on is assembled
+    // and the velocities projected (a plastic capture).
+    if (scene_->revision() != revision_ && !initialize(s).ok())
+      return StepStatus::constraint_violation;
     const Scalar h = settings_.step;
     const auto q_n = s.q;
     v_n_ = s.v;
@@ -384,6 +395,7 @@ class ImplicitIntegrator {
     has_previous_ = h.has_previous;
     alpha_ = h.alpha;
     stats_ = h.statistics;
+    revision_ = scene_->revision();  // the history belongs to the scene as it is now
     have_factorization_ = h.have_factorization;
     if (have_factorization_) {
       iteration_ = h.iteration;
@@ -463,6 +475,7 @@ class ImplicitIntegrator {
   VecC lambda_save_;
   decltype(State::q) q_save_;
   bool has_previous_ = false;
+  std::uint64_t revision_ = 0;  ///< the scene's revision() the history was built for
   VecC e_, lambda_star_;
 };
 

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -244,6 +245,71 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   ExternalForceFunction external_forces = nullptr;
   void* external_forces_user = nullptr;
 
+  // ---- runtime changes (no reallocation) --------------------------------------------------
+  /// Switches joint K on or off while the scene runs (a payload hooked or released, a brake
+  /// locked or freed). An inactive joint's equations read 0 = 0: zero rows of B, Phi, Phi_t and
+  /// conv, which both integrators' augmented Lagrangian tolerates like any redundant constraint
+  /// (M + alpha B^T B stays positive definite), so every size stays fixed and nothing is
+  /// allocated. Each switch counts in revision(); the implicit integrator's next step sees it
+  /// and restarts from the state as initialize() does: accelerations consistent with the new
+  /// forces, and for a joint switched on, positions assembled and velocities projected in the
+  /// mass metric (a perfectly plastic capture: momentum kept, the relative motion's energy
+  /// lost). anchor_joint_at() first makes the joint hold the bodies where they are.
+  template <int K>
+  void set_joint_active(bool active) {
+    static_assert(K >= 0 && K < num_joints, "no such joint");
+    joint_active_[static_cast<std::size_t>(K)] = active;
+    ++revision_;
+  }
+  template <int K>
+  bool joint_active() const {
+    return joint_active_[static_cast<std::size_t>(K)];
+  }
+  bool joint_active(int k) const { return joint_active_[static_cast<std::size_t>(k)]; }
+
+  /// Moves marker j of joint K on its body so that it coincides with marker i at state s: the
+  /// joint then holds the two bodies as they are (origin and axes), so switching it on is a
+  /// capture without a jump in positions. Exact on a rigid body j; on a flexible body j the
+  /// moved point keeps its node's mode shapes (the offset's small-rotation lever arm is not
+  /// updated). Holds for joints whose equations are met by coincident frames (spherical,
+  /// revolute, universal, cylindrical, prismatic, fixed).
+  template <int K>
+  void anchor_joint_at(const State& s, Workspace& w) {
+    using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<J...>>;
+    constexpr int bi = Kind::body_i, bj = Kind::body_j;
+    static_assert(bj >= 0, "anchor_joint_at moves marker j, which must not be on the ground");
+    update_kinematics(s, w);
+    auto& inst = std::get<static_cast<std::size_t>(K)>(joints);
+    MarkerEval<Scalar, modes_of<bi>> mi;
+    mi.evaluate(inst.marker_i, kinematics<bi>(w));
+    const auto& kj = kinematics<bj>(w);
+    const auto rebase = [&](auto& vector, const Vec3<Scalar>& global) {
+      Vec3<Scalar> local =
+          kj.rotation.transpose() * (vector.is_point ? Vec3<Scalar>(global - kj.position) : global);
+      if constexpr (modes_of < bj >> 0) local -= vector.psi * kj.p;
+      vector.c = local;
+    };
+    rebase(inst.marker_j.origin, mi.origin.value);
+    rebase(inst.marker_j.x, mi.x.value);
+    rebase(inst.marker_j.y, mi.y.value);
+    rebase(inst.marker_j.z, mi.z.value);
+    ++revision_;
+  }
+
+  /// Counts the runtime changes made to the model (joints switched, markers anchored): an
+  /// integrator that sees it change drops its factorized Newton matrix.
+  std::uint64_t revision() const { return revision_; }
+  /// Zeroes the multipliers of inactive joints (their reactions are zero, not the last ones).
+  template <class V>
+  void clear_inactive_multipliers(V& lambda) const {
+    for (int k = 0; k < num_joints; ++k)
+      if (!joint_active_[static_cast<std::size_t>(k)])
+        lambda
+            .segment(joint_offset[static_cast<std::size_t>(k)],
+                     joint_nc[static_cast<std::size_t>(k)])
+            .setZero();
+  }
+
   // ---- evaluation -------------------------------------------------------------------------
   /// Body kinematics (A, p, velocities) from the state, and the ground at time t.
   void update_kinematics(const State& s, Workspace& w) const {
@@ -386,6 +452,7 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
           constexpr int K = static_cast<int>(decltype(k)::value);
           using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<J...>>;
           constexpr int bi = Kind::body_i, bj = Kind::body_j, n = joint_nc[K], r = joint_offset[K];
+          if (!joint_active_[static_cast<std::size_t>(K)]) return;  // zero rows
           if constexpr (n > 0) {
             if constexpr (bi >= 0)
               add_gram_block<bi, bi>(w.jac.template middleRows<n>(r), alpha, m);
@@ -587,6 +654,14 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
     using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<J...>>;
     constexpr int bi = Kind::body_i, bj = Kind::body_j;
     constexpr int row0 = joint_offset[K];
+    if (!joint_active_[static_cast<std::size_t>(K)]) {  // 0 = 0 (set_joint_active)
+      constexpr int n = joint_equations<K>;
+      w.jac.template middleRows<n>(row0).setZero();
+      w.phi.template segment<n>(row0).setZero();
+      w.phi_t.template segment<n>(row0).setZero();
+      w.conv.template segment<n>(row0).setZero();
+      return;
+    }
     const auto& inst = std::get<static_cast<std::size_t>(K)>(joints);
     MarkerEval<Scalar, modes_of<bi>> mi;
     MarkerEval<Scalar, modes_of<bj>> mj;
@@ -612,6 +687,14 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
       w.conv(i) = conv;
     });
   }
+
+  static constexpr std::array<bool, num_joints> all_joints_active() {
+    std::array<bool, num_joints> a{};
+    for (auto& x : a) x = true;
+    return a;
+  }
+  std::array<bool, num_joints> joint_active_ = all_joints_active();
+  std::uint64_t revision_ = 0;
 
   template <int BI, int BJ, class Rows, class M>
   static void add_gram_block(const Rows& rows, Scalar alpha, M& m) {

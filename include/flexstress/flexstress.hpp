@@ -14,6 +14,7 @@
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 
+#include "flexstress/fe/abaqus_matrix_reader.hpp"
 #include "flexstress/fe/assembly.hpp"
 #include "flexstress/fe/averaging_link.hpp"
 #include "flexstress/fe/beam3d.hpp"
@@ -30,7 +31,9 @@
 #include "flexstress/fe/hex8.hpp"
 #include "flexstress/fe/mass_options.hpp"
 #include "flexstress/fe/material.hpp"
+#include "flexstress/fe/matrix_import.hpp"
 #include "flexstress/fe/mesh.hpp"
+#include "flexstress/fe/nastran_dmig_reader.hpp"
 #include "flexstress/fe/rhs_attachment_mesh.hpp"
 #include "flexstress/fe/rigid_body_modes.hpp"
 #include "flexstress/fe/static_solver.hpp"

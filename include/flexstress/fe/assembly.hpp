@@ -46,6 +46,17 @@ std::array<Index, 24> hex8_dofs(const DofMap& dofs, const Hex8Element& h) {
   return d;
 }
 
+/// Adds a matrix element's entries (stiffness or mass) at their global DOFs.
+inline void scatter_matrix_element(std::vector<Eigen::Triplet<double>>& trip, const DofMap& dofs,
+                                   const MatrixElement& m,
+                                   const std::vector<MatrixEntry>& entries) {
+  const auto global = [&](Index local) {
+    return dofs.dof(m.nodes[static_cast<std::size_t>(local / 3)], static_cast<int>(local % 3));
+  };
+  for (const MatrixEntry& e : entries)
+    if (e.value != 0.0) trip.emplace_back(global(e.row), global(e.col), e.value);
+}
+
 }  // namespace detail
 
 /// Global stiffness over all nodal DOFs. Fails on degenerate bricks (naming the element).
@@ -65,12 +76,14 @@ Result<SparseMatrixd> assemble_stiffness(const Mesh& mesh, const DofMap& dofs) {
     const auto d = detail::hex8_dofs(dofs, h);
     detail::scatter(trip, *ke, d.data());
   }
+  for (const auto& m : mesh.matrix_elements())
+    detail::scatter_matrix_element(trip, dofs, m, m.stiffness);
   SparseMatrixd k(dofs.size(), dofs.size());
   k.setFromTriplets(trip.begin(), trip.end());
   return k;
 }
 
-/// Global mass over all nodal DOFs (beams, bricks, point masses).
+/// Global mass over all nodal DOFs (beams, bricks, point masses, matrix elements).
 FLEXSTRESS_PRECOMPUTE
 Result<SparseMatrixd> assemble_mass(const Mesh& mesh, const DofMap& dofs,
                                     const MassOptions& options = {}) {
@@ -96,6 +109,8 @@ Result<SparseMatrixd> assemble_mass(const Mesh& mesh, const DofMap& dofs,
           if (p.inertia(a, b) != 0.0)
             trip.emplace_back(dofs.dof(p.node, 3 + a), dofs.dof(p.node, 3 + b), p.inertia(a, b));
   }
+  for (const auto& me : mesh.matrix_elements())
+    detail::scatter_matrix_element(trip, dofs, me, me.mass);
   SparseMatrixd m(dofs.size(), dofs.size());
   m.setFromTriplets(trip.begin(), trip.end());
   return m;

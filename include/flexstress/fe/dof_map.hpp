@@ -42,6 +42,8 @@ class DofMap {
       at_least(l.reference, 6);
       for (Index f : l.face) at_least(f, 3);
     }
+    for (const auto& m : mesh.matrix_elements())
+      for (Index n : m.nodes) at_least(n, 3);
     for (Index n : mesh.rotation_nodes()) at_least(n, 6);
 
     DofMap map;

@@ -1,5 +1,6 @@
 // A finite-element mesh built in code: nodes, materials, sections and elements (3D beams,
-// 8-node bricks, point masses, rigid massless links and averaging links).
+// 8-node bricks, point masses, rigid massless links, averaging links, and matrix elements that
+// carry matrices assembled elsewhere).
 //
 // Building a mesh never fails: add_* only records what it is given. `validate()` (called by
 // every algorithm that consumes a mesh) checks everything at once and names the offending node,
@@ -10,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -35,6 +37,23 @@ enum class Hex8Formulation : unsigned char {
   incompatible_modes,  ///< Wilson-Taylor incompatible modes with the Taylor-Beresford-Wilson
                        ///< modification: bends well with one element through the thickness and
                        ///< passes the patch test on distorted meshes.
+};
+
+/// One entry of a matrix given as data: row and column are local DOFs,
+/// 3 * (position in the element's node list) + component (0, 1, 2 = x, y, z).
+struct MatrixEntry {
+  Index row = 0, col = 0;
+  double value = 0.0;
+};
+
+/// Stiffness and mass given as matrices over the translations of a set of nodes instead of
+/// integrated from a material: a model assembled by another FE program (matrix_import.hpp:
+/// Abaqus *MATRIX GENERATE, Nastran DMIG). Both triangles of each symmetric matrix are listed.
+/// The mass is used as it is (MassOptions do not apply); the inertia integrals need it in the
+/// solid-element form m_ab I (translations coupled only to the same component, alike in x, y, z).
+struct MatrixElement {
+  std::vector<Index> nodes;
+  std::vector<MatrixEntry> stiffness, mass;
 };
 
 /// Two-node 3D beam. Local x runs from nodes[0] to nodes[1]; local y is the component of
@@ -117,6 +136,13 @@ class Mesh {
     averaging_links_.push_back(AveragingLink{reference, std::move(face), std::move(weights)});
     return static_cast<Index>(averaging_links_.size()) - 1;
   }
+  /// A matrix element (see MatrixElement) over `nodes`.
+  Index add_matrix_element(std::vector<Index> nodes, std::vector<MatrixEntry> stiffness,
+                           std::vector<MatrixEntry> mass) {
+    matrix_elements_.push_back(
+        MatrixElement{std::move(nodes), std::move(stiffness), std::move(mass)});
+    return static_cast<Index>(matrix_elements_.size()) - 1;
+  }
   /// Gives a node rotational DOFs even if no element needs them (e.g. an interface node).
   void require_rotations(Index node) { rotation_nodes_.push_back(node); }
 
@@ -131,6 +157,7 @@ class Mesh {
   const std::vector<RigidLink>& rigid_links() const { return rigid_links_; }
   const std::vector<AveragingLink>& averaging_links() const { return averaging_links_; }
   const std::vector<Index>& rotation_nodes() const { return rotation_nodes_; }
+  const std::vector<MatrixElement>& matrix_elements() const { return matrix_elements_; }
   const Material& material(Index i) const { return materials_[static_cast<std::size_t>(i)]; }
   const BeamSection& section(Index i) const { return sections_[static_cast<std::size_t>(i)]; }
 
@@ -242,6 +269,30 @@ class Mesh {
                             sorted[k], " twice");
       }
     }
+    for (std::size_t i = 0; i < matrix_elements_.size(); ++i) {
+      const MatrixElement& m = matrix_elements_[i];
+      std::vector<Index> sorted = m.nodes;
+      std::sort(sorted.begin(), sorted.end());
+      for (std::size_t k = 0; k < sorted.size(); ++k) {
+        if (bad_node(sorted[k]))
+          return make_error(ErrorCode::invalid_mesh, "matrix element ", i, " refers to node ",
+                            sorted[k], ", which does not exist (the mesh has ", nn, " nodes)");
+        if (k > 0 && sorted[k] == sorted[k - 1])
+          return make_error(ErrorCode::invalid_mesh, "matrix element ", i, " lists node ",
+                            sorted[k], " twice");
+      }
+      const Index size = 3 * static_cast<Index>(m.nodes.size());
+      for (const auto* entries : {&m.stiffness, &m.mass})
+        for (const MatrixEntry& e : *entries) {
+          const char* which = entries == &m.stiffness ? "stiffness" : "mass";
+          if (e.row < 0 || e.row >= size || e.col < 0 || e.col >= size)
+            return make_error(ErrorCode::invalid_mesh, "matrix element ", i, ": ", which,
+                              " entry (", e.row, ", ", e.col, ") is outside its ", size, " DOFs");
+          if (!std::isfinite(e.value))
+            return make_error(ErrorCode::invalid_argument, "matrix element ", i, ": ", which,
+                              " entry (", e.row, ", ", e.col, ") is not finite");
+        }
+    }
     for (Index n : rotation_nodes_)
       if (bad_node(n))
         return make_error(ErrorCode::invalid_mesh, "require_rotations: node ", n,
@@ -259,6 +310,7 @@ class Mesh {
   std::vector<RigidLink> rigid_links_;
   std::vector<AveragingLink> averaging_links_;
   std::vector<Index> rotation_nodes_;
+  std::vector<MatrixElement> matrix_elements_;
 };
 
 }  // namespace flexstress::fe

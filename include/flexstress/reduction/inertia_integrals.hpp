@@ -17,12 +17,16 @@
 //    I_s = J/2 (1 - 2 e_x e_x^T) keeps only the torsional inertia J about the axis, as the FE
 //    mass does;
 //  - point masses: m and a rotational inertia J about the node, through the equivalent tensor
-//    I = tr(J)/2 1 - J.
+//    I = tr(J)/2 1 - J;
+//  - matrix elements (imported solid models): nodal-based as the bricks, with the scalar mass
+//    read from the given matrix, which must have the form m_ab I.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 #include "flexstress/core/precompute.hpp"
 #include "flexstress/core/skew.hpp"
@@ -83,6 +87,60 @@ void add_lumped(InertiaIntegrals& out, double m, const Matrix3d& i_eq,
     }
 }
 
+/// Nodal-based moments (bricks, matrix elements) of the fields x[a] (3 x n nodal values) over a
+/// scalar mass m (n x n) with row sums m 1: mass += 1^T m 1, S_a += X_a m 1,
+/// Lambda_ab += X_a m X_b^T. `xm` is scratch of the same shape as x.
+template <class Field, class Mass, class RowSums>
+void add_nodal_moments(InertiaIntegrals& out, const std::vector<Field>& x, std::vector<Field>& xm,
+                       const Mass& m, const RowSums& row_sums) {
+  const auto nf = static_cast<Index>(x.size());
+  out.mass += row_sums.sum();
+  for (Index a = 0; a < nf; ++a) {
+    const auto ia = static_cast<std::size_t>(a);
+    xm[ia] = x[ia] * m;
+    out.first[ia] += x[ia] * row_sums;
+  }
+  for (Index a = 0; a < nf; ++a)
+    for (Index b = 0; b < nf; ++b)
+      out.lambda(a, b).noalias() +=
+          xm[static_cast<std::size_t>(a)] * x[static_cast<std::size_t>(b)].transpose();
+}
+
+/// The scalar mass m_pq (nodes p, q) of a matrix element whose mass is m_pq I: translations
+/// coupled only to the same component, alike in x, y and z (solid elements, consistent or
+/// lumped). Anything else is refused: its inertia integrals are not defined by the matrix alone.
+inline Result<Eigen::SparseMatrix<double>> matrix_element_scalar_mass(const fe::MatrixElement& me,
+                                                                      std::size_t e) {
+  const auto n = static_cast<Index>(me.nodes.size());
+  std::array<std::vector<Eigen::Triplet<double>>, 3> trip;
+  static constexpr const char* axis = "xyz";
+  for (const fe::MatrixEntry& t : me.mass) {
+    if (t.value == 0.0) continue;
+    const Index cr = t.row % 3, cc = t.col % 3;
+    if (cr != cc)
+      return make_error(ErrorCode::invalid_argument, "matrix element ", e, ": the mass couples ",
+                        axis[cr], " of its node ", t.row / 3, " with ", axis[cc], " of its node ",
+                        t.col / 3,
+                        "; inertia integrals need a mass of the form m_ab I (solid "
+                        "elements: each translation coupled only to the same component)");
+    trip[static_cast<std::size_t>(cr)].emplace_back(t.row / 3, t.col / 3, t.value);
+  }
+  std::array<Eigen::SparseMatrix<double>, 3> m;
+  for (std::size_t c = 0; c < 3; ++c) {
+    m[c].resize(n, n);
+    m[c].setFromTriplets(trip[c].begin(), trip[c].end());
+  }
+  const double size = m[0].norm();
+  for (std::size_t c = 1; c < 3; ++c) {
+    const double differs = (m[c] - m[0]).norm();
+    if (!(differs <= 1e-10 * size))
+      return make_error(ErrorCode::invalid_argument, "matrix element ", e, ": the mass of ",
+                        axis[c], " differs from that of x (relative ", differs / size,
+                        "); inertia integrals need a mass of the form m_ab I");
+  }
+  return m[0];
+}
+
 }  // namespace detail
 
 /// Integrates the first and second moments of u0 and of the columns of `modes` (all-DOF
@@ -115,16 +173,7 @@ Result<InertiaIntegrals> inertia_integrals(const fe::Mesh& mesh, const fe::DofMa
           x[static_cast<std::size_t>(k + 1)](c, a) =
               modes(dofs.dof(h.nodes[static_cast<std::size_t>(a)], c), k);
     const Eigen::Matrix<double, 8, 1> row_sums = me->rowwise().sum();
-    out.mass += row_sums.sum();
-    for (Index a = 0; a < nf; ++a) {
-      const auto ia = static_cast<std::size_t>(a);
-      xm[ia] = x[ia] * (*me);
-      out.first[ia] += x[ia] * row_sums;
-    }
-    for (Index a = 0; a < nf; ++a)
-      for (Index b = 0; b < nf; ++b)
-        out.lambda(a, b).noalias() +=
-            xm[static_cast<std::size_t>(a)] * x[static_cast<std::size_t>(b)].transpose();
+    detail::add_nodal_moments(out, x, xm, *me, row_sums);
   }
 
   // Beams.
@@ -187,6 +236,26 @@ Result<InertiaIntegrals> inertia_integrals(const fe::Mesh& mesh, const fe::DofMa
     }
     detail::add_lumped(out, p.mass,
                        rot ? detail::second_moment_of_inertia(p.inertia) : Matrix3d::Zero(), c, r);
+  }
+
+  // Matrix elements: nodal-based like the bricks, Lambda_ab += X_a m X_b^T with the scalar mass
+  // m of the element (its mass is m I).
+  for (std::size_t e = 0; e < mesh.matrix_elements().size(); ++e) {
+    const fe::MatrixElement& me = mesh.matrix_elements()[e];
+    auto m = detail::matrix_element_scalar_mass(me, e);
+    if (!m) return m.error();
+    const auto n = static_cast<Index>(me.nodes.size());
+    std::vector<Eigen::Matrix3Xd> field(static_cast<std::size_t>(nf), Eigen::Matrix3Xd(3, n)),
+        weighted(static_cast<std::size_t>(nf));
+    for (Index a = 0; a < n; ++a) {
+      const Index node = me.nodes[static_cast<std::size_t>(a)];
+      field[0].col(a) = mesh.node(node);
+      for (Index k = 0; k < out.num_modes; ++k)
+        for (int cc = 0; cc < 3; ++cc)
+          field[static_cast<std::size_t>(k + 1)](cc, a) = modes(dofs.dof(node, cc), k);
+    }
+    const VectorXd row_sums = *m * VectorXd::Ones(n);
+    detail::add_nodal_moments(out, field, weighted, *m, row_sums);
   }
   return out;
 }

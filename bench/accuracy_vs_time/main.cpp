@@ -9,10 +9,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <flexstress/fatigue/damage.hpp>
@@ -32,8 +34,8 @@ const char* kUsage =
     "  --output DIR   where the CSV, the Markdown table and the plot go (default\n"
     "                 accuracy-out)\n"
     "  --groups LIST  only these knob groups (the reference always runs): modes, step,\n"
-    "                 integrator, formulation, density, attachment, paper, base, scalar,\n"
-    "                 effects, recovery, newton, fast\n";
+    "                 integrator, reduction, formulation, density, attachment, paper,\n"
+    "                 base, scalar, effects, recovery, newton, fast\n";
 
 const char* name_of(Recovery r) {
   switch (r) {
@@ -112,11 +114,22 @@ std::vector<Knobs> configurations() {
     k.step = h;
     add(k, "step", "h " + number(h * 1e3) + " ms");
   }
-  for (int n : {24, 16, 8}) {
+  // RK4 at a step inside its stability limit (h omega_max < 2.78; omega_max is 2.8e4 rad/s with
+  // 8 modes and 6.9e4 with 16): its cost grows with the highest mode it carries.
+  for (const auto& [n, h] : {std::pair{6, 1e-4}, std::pair{8, 8e-5}, std::pair{16, 3e-5}}) {
     Knobs k = ref;
     k.modes = n;
+    k.step = h;
     k.integrator = study::Integrator::explicit_rk4;
-    add(k, "integrator", "RK4, " + std::to_string(n) + " modes, h 0.1 ms");
+    add(k, "integrator", "RK4, " + std::to_string(n) + " modes, h " + number(h * 1e3) + " ms");
+  }
+  // The boom reduced by Craig-Chang (free-free modes and inertia-relief attachment modes)
+  // instead of Craig-Bampton, at the reference's 24 modes and at the paper's 10.
+  for (int n : {24, 10}) {
+    Knobs k = ref;
+    k.modes = n;
+    k.spec.boom_reduction = reduction::ReductionMethod::craig_chang;
+    add(k, "reduction", "Craig-Chang boom, " + std::to_string(n) + " modes");
   }
   {
     Knobs k = ref;
@@ -242,11 +255,28 @@ Errors compare(const RunResult& run, const RunResult& ref, double ref_range, dou
   return e;
 }
 
+// The process's resident memory (MB) from /proc/self/status: "VmRSS" now, "VmHWM" its peak.
+// Linux resets the peak to the current size when "5" is written to /proc/self/clear_refs, so the
+// peak read after a run is that run's (with what the process already held). NaN elsewhere.
+double resident_mb(const char* key) {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind(key, 0) == 0)
+      return std::strtod(line.c_str() + std::strlen(key), nullptr) / 1024;
+  return std::nan("");
+}
+void reset_peak_resident() {
+  std::ofstream f("/proc/self/clear_refs");
+  f << "5";
+}
+
 struct Row {
   Knobs knobs;
   RunResult result;
   Errors errors;
   bool pareto = false;
+  double rss_start_mb = std::nan(""), rss_peak_mb = std::nan("");
   double total_us() const { return result.step_us_median + result.recovery_us_median; }
   /// CPU time per simulated second (ms/s; 1000 is real time): what a step size really costs,
   /// since a larger step is dearer per step but needs fewer of them.
@@ -282,7 +312,7 @@ void write_csv(const std::string& path, const std::vector<Row>& rows) {
        "density,formulation,attachment,submodel_inertia,step_us_median,step_us_p99,step_us_max,"
        "recovery_us_median,recovery_us_max,total_us,step_bytes,max_error_pct,rms_error_pct,"
        "damage,damage_error_pct,iterations_per_step,over_budget,violations,precompute_ms,pareto,"
-       "cpu_ms_per_simulated_s,error\n";
+       "cpu_ms_per_simulated_s,rss_start_mb,rss_peak_mb,error\n";
   f.precision(6);
   for (const Row& r : rows) {
     const Knobs& k = r.knobs;
@@ -305,30 +335,31 @@ void write_csv(const std::string& path, const std::vector<Row>& rows) {
       << 100 * r.errors.rms_rel << ',' << r.errors.damage << ',' << 100 * r.errors.damage_rel << ','
       << x.iterations_per_step << ',' << x.over_budget << ',' << x.violations << ','
       << x.precompute_ms << ',' << (r.pareto ? 1 : 0) << ',' << r.cost_ms_per_s() << ','
-      << csv_name(x.error) << '\n';
+      << r.rss_start_mb << ',' << r.rss_peak_mb << ',' << csv_name(x.error) << '\n';
   }
 }
 
 void write_markdown(const std::string& path, const std::vector<Row>& rows) {
   std::ofstream f(path);
   f << "| run | knob | step us (median / p99) | recovery us | CPU ms per simulated s | "
-       "max error % | RMS error % | damage error % | step bytes | Pareto |\n"
-       "|---|---|---|---|---|---|---|---|---|---|\n";
+       "max error % | RMS error % | damage error % | step bytes | peak RSS MB | Pareto |\n"
+       "|---|---|---|---|---|---|---|---|---|---|---|\n";
   char buf[512];
   for (const Row& r : rows) {
     const RunResult& x = r.result;
     if (!x.error.empty()) {
       f << "| " << r.knobs.name << " | " << r.knobs.group << " | failed: " << x.error
-        << " | | | | | | | |\n";
+        << " | | | | | | | | |\n";
       continue;
     }
-    std::snprintf(buf, sizeof buf,
-                  "| %s | %s | %.2f / %.2f | %.3f | %.1f | %.3g | %.3g | %+.3g | %s | %s |\n",
-                  r.knobs.name.c_str(), r.knobs.group.c_str(), x.step_us_median, x.step_us_p99,
-                  x.recovery_us_median, r.cost_ms_per_s(), 100 * r.errors.max_rel,
-                  100 * r.errors.rms_rel, 100 * r.errors.damage_rel,
-                  x.step_bytes < 0 ? "-" : std::to_string(long(x.step_bytes)).c_str(),
-                  r.pareto ? "yes" : "");
+    std::snprintf(
+        buf, sizeof buf,
+        "| %s | %s | %.2f / %.2f | %.3f | %.1f | %.3g | %.3g | %+.3g | %s | %.0f | %s |\n",
+        r.knobs.name.c_str(), r.knobs.group.c_str(), x.step_us_median, x.step_us_p99,
+        x.recovery_us_median, r.cost_ms_per_s(), 100 * r.errors.max_rel, 100 * r.errors.rms_rel,
+        100 * r.errors.damage_rel,
+        x.step_bytes < 0 ? "-" : std::to_string(long(x.step_bytes)).c_str(), r.rss_peak_mb,
+        r.pareto ? "yes" : "");
     f << buf;
   }
 }
@@ -383,7 +414,10 @@ int main(int argc, char** argv) {
 
   for (Row& r : rows) {
     std::fprintf(stderr, "  %-48s", r.knobs.name.c_str());
+    reset_peak_resident();
+    r.rss_start_mb = resident_mb("VmRSS:");
     r.result = study::run(r.knobs);
+    r.rss_peak_mb = resident_mb("VmHWM:");
     if (r.result.error.empty())
       std::fprintf(stderr, " %8.2f us/step\n", r.result.step_us_median);
     else

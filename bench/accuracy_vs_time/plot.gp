@@ -22,8 +22,8 @@ set format x '%g'
 grp(g) = (strcol(2) eq g && $22 > 0) ? $22 : NaN
 set arrow from 5, graph 0 to 5, graph 1 nohead dt 3 lc rgb 'blue'
 set label '5 us/step at h = 1 ms' at 5, graph 0.97 right offset -0.5,0 tc rgb 'blue' font ',8'
-groups = "modes step integrator formulation density attachment paper base scalar effects recovery newton fast"
-colors = "#9400d3 #009e73 #56b4e9 #e69f00 #c8b400 #0072b2 #e51e10 #000000 #ff69b4 #8b4513 #00a0a0 #808000 #ff4500"
+groups = "modes step integrator reduction formulation density attachment paper base scalar effects recovery newton fast"
+colors = "#9400d3 #009e73 #56b4e9 #4b0082 #e69f00 #c8b400 #0072b2 #e51e10 #000000 #ff69b4 #8b4513 #00a0a0 #808000 #ff4500"
 # Labels on the Pareto front and the paper's configuration only (the table has every run).
 lab(x) = ($30 == 1 || strcol(2) eq 'paper') && $22 > 0 ? x : NaN
 plot for [i=1:words(groups)] f skip 1 u 31:(grp(word(groups, i))) w p pt (4 + 2 * ((i - 1) % 4)) \

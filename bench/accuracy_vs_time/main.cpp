@@ -213,6 +213,23 @@ std::vector<Knobs> configurations() {
     k.modes = 16;
     add(k, "fast", "float, 16 modes, h 2 ms");
   }
+  // Toward 5 us per millisecond simulated: longer steps and a Newton budget on 16 modes.
+  {
+    Knobs k = base;
+    k.acceleration_tolerance = 1e-3;
+    k.step = 2e-3;
+    k.max_iterations = 2;
+    k.accept_at_iteration_limit = true;
+    add(k, "fast", "16 modes, h 2 ms, tol 1e-3, 2 Newton iterations");
+    k.step = 2.5e-3;
+    add(k, "fast", "16 modes, h 2.5 ms, tol 1e-3, 2 Newton iterations");
+    k.max_iterations = 30;
+    k.accept_at_iteration_limit = false;
+    add(k, "fast", "16 modes, h 2.5 ms, tol 1e-3");
+    k.step = 2e-3;
+    k.acceleration_tolerance = 1e-2;
+    add(k, "fast", "16 modes, h 2 ms, tol 1e-2");
+  }
   return runs;
 }
 

@@ -38,6 +38,9 @@ struct CraneSpec {
   reduction::ReductionMethod boom_reduction = reduction::ReductionMethod::craig_bampton;
   double submodel_density = 1.0;  ///< 1792 bricks
   double submodel_x0 = 0.5, submodel_x1 = 0.8;
+  /// Longest sub-model brick along x away from the toes (0: the generator's grading, the paper's
+  /// sub-model; see fe::RhsAttachmentSpec::max_element_length).
+  double submodel_max_element_length = 0.0;
   double wall = 0.004;
   fe::Hex8Formulation formulation = fe::Hex8Formulation::incompatible_modes;
   /// false: the boom has nodes at the sub-model's ends (the paper). true: it does not, and the

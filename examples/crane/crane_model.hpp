@@ -147,6 +147,7 @@ Result<Crane<N, StorageLimit, Scalar, EffectList>> make_stroke_crane(
   ds.density = spec.submodel_density;
   ds.x0 = spec.submodel_x0;
   ds.x1 = spec.submodel_x1;
+  ds.max_element_length = spec.submodel_max_element_length;
   ds.wall = spec.wall;
   ds.formulation = spec.formulation;
   auto detail = fe::make_rhs_attachment_mesh(ds);

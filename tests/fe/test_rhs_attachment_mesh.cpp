@@ -222,6 +222,63 @@ TEST_CASE("RHS attachment mesh: impossible parameters get a clear error") {
         std::string::npos);
   CHECK(error_of([](RhsAttachmentSpec& s) { s.material.poissons_ratio = 0.5; }).find("Poisson") !=
         std::string::npos);
+  CHECK(error_of([](RhsAttachmentSpec& s) {
+          s.max_element_length = -0.01;
+        }).find("max_element_length -0.01 must be finite and >= 0") != std::string::npos);
+  CHECK(error_of([](RhsAttachmentSpec& s) {
+          s.max_element_length = 1e-7;
+        }).find("over 100000 x-stations") != std::string::npos);
+  CHECK(error_of([](RhsAttachmentSpec& s) {
+          s.extra_x_stations = {0.6, 0.9};
+        }).find("extra x-station 1 at x = 0.9 is outside the segment") != std::string::npos);
+  CHECK(error_of([](RhsAttachmentSpec& s) {
+          s.extra_x_stations = {0.675};
+        }).find("extra x-station 0 at x = 0.675 is within 2 t of the weld toes") !=
+        std::string::npos);
+}
+
+TEST_CASE("RHS attachment mesh: a whole boom with stations for links and capped element length") {
+  // The accuracy study's whole-boom model: the detail's generator over 0 to 4.5 m, with sections
+  // at B's node (0.32) and the payload (2.5) for rigid links, no brick longer than 25 mm.
+  RhsAttachmentSpec spec;
+  spec.density = 0.55;
+  spec.x0 = 0.0;
+  spec.x1 = 4.5;
+  spec.max_element_length = 0.025;
+  spec.extra_x_stations = {2.5, 0.32};
+  auto whole = make_rhs_attachment_mesh(spec);
+  REQUIRE_MESSAGE(whole.ok(), whole.error().what());
+  const auto& xs = whole->x_stations;
+  CHECK(xs.front() == 0.0);
+  CHECK(xs.back() == 4.5);
+  double longest = 0;
+  for (std::size_t k = 1; k < xs.size(); ++k) {
+    CHECK(xs[k] > xs[k - 1]);
+    longest = std::max(longest, xs[k] - xs[k - 1]);
+  }
+  CHECK(longest <= 0.025 * (1 + 1e-12));
+  const auto per_section = static_cast<std::size_t>(whole->n_around * (whole->n_through + 1));
+  for (double x : {0.0, 0.32, 2.5, 4.5}) {
+    CAPTURE(x);
+    const auto nodes = whole->section_nodes(x);
+    REQUIRE(nodes.size() == per_section);
+    for (Index n : nodes) CHECK(whole->mesh.node(n).x() == doctest::Approx(x).epsilon(1e-12));
+  }
+  CHECK(whole->section_nodes(0.33).empty());
+  CHECK(whole->section_nodes(0.0) == whole->end_section_x0);
+  // The fine zone at the toes is the segment's: the same stations within 1.5 t of each toe.
+  const auto segment = make(0.55);
+  auto near_toes = [](const RhsAttachmentMesh& m) {
+    std::vector<double> v;
+    for (double x : m.x_stations)
+      if (x > m.opposite_weld_toe_x - 0.006 && x < m.weld_toe_x + 0.006) v.push_back(x);
+    return v;
+  };
+  const auto a = near_toes(*whole), b = near_toes(segment);
+  REQUIRE(a.size() == b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) CHECK(a[k] == doctest::Approx(b[k]).epsilon(1e-12));
+  // Without the options the segment is meshed as before (the counts of the first test case).
+  CHECK(segment.num_attachment_bricks == whole->num_attachment_bricks);
 }
 
 namespace {

@@ -91,7 +91,7 @@ void put_state(binary::Writer& w, const typename SceneT::State& s) {
   put_scalars(w, s.lambda.data(), SceneT::nc);
   std::apply(
       [&](const auto&... f) {
-        auto raw = [&](const auto& x) {
+        [[maybe_unused]] auto raw = [&](const auto& x) {  // unused without force elements
           static_assert(std::is_trivially_copyable_v<std::decay_t<decltype(x)>>,
                         "force element states are saved as raw bytes");
           const auto* b = reinterpret_cast<const unsigned char*>(&x);
@@ -117,7 +117,7 @@ bool get_state(binary::Reader& r, typename SceneT::State& s) {
   ok = ok && get_scalars(r, s.lambda.data(), SceneT::nc);
   std::apply(
       [&](auto&... f) {
-        auto raw = [&](auto& x) {
+        [[maybe_unused]] auto raw = [&](auto& x) {  // unused without force elements
           auto* b = reinterpret_cast<unsigned char*>(&x);
           for (std::size_t i = 0; ok && i < sizeof(x); ++i) ok = r.get(b[i]);
         };

@@ -52,6 +52,13 @@ struct RhsAttachmentSpec {
   double attachment_width = 0.100;   ///< plate extent along z, centred; <= width
   double weld_leg = 0.005;           ///< fillet weld leg (45 degree welds)
   double density = 1.0;              ///< multiplies every division count
+  /// Longest element along x away from the toes (0: no cap; the graded zones then grow in a
+  /// fixed number of steps). A long segment, such as a whole boom, needs one.
+  double max_element_length = 0.0;
+  /// Positions that must be x-stations, e.g. where loads or supports are tied to a section
+  /// (at least 2 t outside the weld toes). The graded zone ends at the first one on each side;
+  /// beyond it the steps are uniform.
+  std::vector<double> extra_x_stations;
   Material material = steel();
   Hex8Formulation formulation = Hex8Formulation::incompatible_modes;
 };
@@ -77,6 +84,17 @@ struct RhsAttachmentMesh {
   std::vector<double> top_flange_z;  ///< z of the top flange's surface nodes
   int n_around = 0, n_through = 0;   ///< ring divisions
   Index num_tube_bricks = 0, num_attachment_bricks = 0;
+
+  /// All tube nodes of the cross-section at x-station x (empty if x is not a station).
+  std::vector<Index> section_nodes(double x) const {
+    std::vector<Index> nodes;
+    const auto per_station = static_cast<Index>(n_around) * (n_through + 1);
+    for (std::size_t ix = 0; ix < x_stations.size(); ++ix)
+      if (std::abs(x_stations[ix] - x) <= 1e-9 * spec.height)
+        for (Index k = 0; k < per_station; ++k)
+          nodes.push_back(static_cast<Index>(ix) * per_station + k);
+    return nodes;
+  }
 };
 
 namespace detail {
@@ -102,16 +120,42 @@ std::vector<double> geometric_positions(double length, double first, int count) 
 }
 
 // Zone from a weld toe outwards: uniform steps h0 over at least fine_length, then
-// geometric growth in n_grow steps to the zone's end.
+// geometric growth in n_grow steps to the zone's end, or in as many more steps as keep the last
+// one at most `cap` (cap > 0).
 FLEXSTRESS_PRECOMPUTE
-std::vector<double> toe_zone_positions(double length, double h0, double fine_length, int n_grow) {
+std::vector<double> toe_zone_positions(double length, double h0, double fine_length, int n_grow,
+                                       double cap = 0.0) {
   const int n_fine = static_cast<int>(std::ceil(fine_length / h0 - 1e-9));
   if (n_fine * h0 >= length - 0.5 * h0)
     return geometric_positions(length, length, static_cast<int>(std::ceil(length / h0)));
   std::vector<double> s;
   for (int k = 0; k <= n_fine; ++k) s.push_back(k * h0);
-  const std::vector<double> rest = geometric_positions(length - n_fine * h0, h0, n_grow);
+  std::vector<double> rest = geometric_positions(length - n_fine * h0, h0, n_grow);
+  while (cap > 0.0 && rest.size() >= 2 && rest[rest.size() - 1] - rest[rest.size() - 2] > cap)
+    rest = geometric_positions(length - n_fine * h0, h0, static_cast<int>(rest.size()));
   for (std::size_t k = 1; k < rest.size(); ++k) s.push_back(n_fine * h0 + rest[k]);
+  return s;
+}
+
+// A whole outer zone from a toe: the toe zone up to the first stop (distances from the toe,
+// ascending, inside (0, length)) or the zone's end, then uniform steps between the stops, no
+// longer than `cap` (cap > 0) or than the toe zone's last step.
+FLEXSTRESS_PRECOMPUTE
+std::vector<double> outer_zone_positions(double length, double h0, double fine_length, int n_grow,
+                                         double cap, const std::vector<double>& stops) {
+  const double first_end = stops.empty() ? length : stops.front();
+  std::vector<double> s = toe_zone_positions(first_end, h0, fine_length, n_grow, cap);
+  const double last_step = s.size() >= 2 ? s[s.size() - 1] - s[s.size() - 2] : first_end;
+  const double step = cap > 0.0 ? cap : last_step;
+  if (stops.empty()) return s;
+  std::vector<double> ends(stops.begin() + 1, stops.end());
+  ends.push_back(length);
+  double from = first_end;
+  for (double to : ends) {
+    const int n = std::max(1, static_cast<int>(std::ceil((to - from) / step - 1e-9)));
+    for (int k = 1; k <= n; ++k) s.push_back(from + (to - from) * k / n);
+    from = to;
+  }
   return s;
 }
 
@@ -221,6 +265,23 @@ Status validate(const RhsAttachmentSpec& s) {
     return make_error(ErrorCode::invalid_argument,
                       "RHS attachment mesh: the weld toes at x = ", toe_lo, " and ", toe_hi,
                       " must lie at least 2 t inside the segment [", s.x0, ", ", s.x1, "]");
+  if (!std::isfinite(s.max_element_length) || s.max_element_length < 0.0)
+    return make_error(ErrorCode::invalid_argument, "RHS attachment mesh: max_element_length ",
+                      s.max_element_length, " must be finite and >= 0 (0: no cap)");
+  if (s.max_element_length > 0.0 && (s.x1 - s.x0) / s.max_element_length > 1e5)
+    return make_error(ErrorCode::invalid_argument, "RHS attachment mesh: max_element_length ",
+                      s.max_element_length, " makes over 100000 x-stations on [", s.x0, ", ", s.x1,
+                      "]");
+  for (std::size_t k = 0; k < s.extra_x_stations.size(); ++k) {
+    const double x = s.extra_x_stations[k];
+    if (!std::isfinite(x) || x < s.x0 || x > s.x1)
+      return make_error(ErrorCode::invalid_argument, "RHS attachment mesh: extra x-station ", k,
+                        " at x = ", x, " is outside the segment [", s.x0, ", ", s.x1, "]");
+    if (x > toe_lo - 2.0 * s.wall && x < toe_hi + 2.0 * s.wall)
+      return make_error(ErrorCode::invalid_argument, "RHS attachment mesh: extra x-station ", k,
+                        " at x = ", x, " is within 2 t of the weld toes at x = ", toe_lo, " and ",
+                        toe_hi, " (the fine zone there has its own stations)");
+  }
   if (!(s.density <= 4.0))
     return make_error(ErrorCode::invalid_argument, "RHS attachment mesh: density ", s.density,
                       " is above 4 (over 100000 bricks); refine locally instead");
@@ -264,8 +325,21 @@ Result<RhsAttachmentMesh> make_rhs_attachment_mesh(const RhsAttachmentSpec& spec
 
   // x-stations: outer zone, weld foot, plate, weld foot, outer zone.
   std::vector<double>& xs = out.x_stations;
-  const auto left =
-      detail::toe_zone_positions(out.opposite_weld_toe_x - spec.x0, h0, 1.5 * t, n_grow);
+  // Extra stations as distances from the toe on each side, nearest first (the segment's ends
+  // are stations anyway).
+  std::vector<double> stops_left, stops_right;
+  for (double x : spec.extra_x_stations) {
+    if (x > spec.x0 && x < out.opposite_weld_toe_x)
+      stops_left.push_back(out.opposite_weld_toe_x - x);
+    if (x > out.weld_toe_x && x < spec.x1) stops_right.push_back(x - out.weld_toe_x);
+  }
+  for (auto* stops : {&stops_left, &stops_right}) {
+    std::sort(stops->begin(), stops->end());
+    stops->erase(std::unique(stops->begin(), stops->end()), stops->end());
+  }
+  const double cap = spec.max_element_length;
+  const auto left = detail::outer_zone_positions(out.opposite_weld_toe_x - spec.x0, h0, 1.5 * t,
+                                                 n_grow, cap, stops_left);
   for (std::size_t k = left.size(); k-- > 1;) xs.push_back(out.opposite_weld_toe_x - left[k]);
   const auto ix_toe_left = static_cast<Index>(xs.size());
   for (int k = 0; k < 2 * m; ++k) xs.push_back(out.opposite_weld_toe_x + k * foot_step);
@@ -274,7 +348,8 @@ Result<RhsAttachmentMesh> make_rhs_attachment_mesh(const RhsAttachmentSpec& spec
   for (std::size_t k = half.size(); k-- > 1;) xs.push_back(xr - half[k]);
   for (int k = 0; k < 2 * m; ++k) xs.push_back(xr + k * foot_step);
   const auto ix_toe = static_cast<Index>(xs.size());
-  for (double s : detail::toe_zone_positions(spec.x1 - out.weld_toe_x, h0, 1.5 * t, n_grow))
+  for (double s : detail::outer_zone_positions(spec.x1 - out.weld_toe_x, h0, 1.5 * t, n_grow, cap,
+                                               stops_right))
     xs.push_back(out.weld_toe_x + s);
   xs.front() = spec.x0;
   xs.back() = spec.x1;

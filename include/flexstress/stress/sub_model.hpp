@@ -164,7 +164,14 @@ class SubModel {
       const Vector3d an = acceleration_at(mesh_->node(n));
       for (int c = 0; c < 3; ++c) a(dofs.dof(n, c)) = an(c);
     }
-    const VectorXd load = -(model_->mass_all * a);
+    return load_response(-(model_->mass_all * a));
+  }
+
+  /// Quasi-static response to a load (all-DOF vector of forces and moments, e.g. on nodes tied
+  /// to the mesh by links) with the boundary held: all-DOF displacements. With the masters held,
+  /// the model need not be in equilibrium; the masters take the reactions.
+  FLEXSTRESS_PRECOMPUTE
+  VectorXd load_response(const VectorXd& load) const {
     return solver_->solve(load, VectorXd::Zero(num_boundary_dofs()));
   }
 

@@ -10,10 +10,11 @@
 // joint's multiplier). A brick model of the whole boom (the same RHS and welded rib, meshed by
 // the same generator at the same density, so the detail's mesh is the sub-model's) is clamped at
 // A and solved for them quasi-statically; its hot spot (the same read-out rows) is compared with
-// the sub-model's at the same instant. The clamp's reaction checks the load set: the rods's and
-// A's forces from the simulation balance the inertia and gravity loads on the bricks only if
-// both describe the same boom, so the program prints the residual force and the moment about A's
-// hinge axis (which a revolute does not carry).
+// the sub-model's at the same instant, and with that of the same sub-model driven at its x1 end by
+// the beam's section forces (CraneSpec::submodel_drive). The clamp's reaction checks the load
+// set: the rod's and A's forces from the simulation balance the inertia and gravity loads on the
+// bricks only if both describe the same boom, so the program prints the residual force and the
+// moment about A's hinge axis (which a revolute does not carry).
 //
 // Writes <output>/whole_boom.csv (one row per instant), whole_boom_history.csv (the sub-model's
 // hot spot every 10 ms) and whole_boom.md (the summary), and renders whole_boom.gp with gnuplot.
@@ -83,7 +84,24 @@ struct Instant {
   double t = 0;
   State state;
   double hot_sub = 0, hot_sub_inertia = 0, nominal_sub = 0;
+  double hot_forced = 0;  ///< the force-driven sub-model's, with its inertia
 };
+
+// A crane and the rows of its sub-model's own inertia.
+struct CraneWithInertia {
+  CraneT crane;
+  stress::SubModelInertia<double> inertia;
+};
+
+Result<CraneWithInertia> make_crane_with_inertia(const crane::CraneSpec& spec,
+                                                 const std::vector<double>& t,
+                                                 const std::vector<double>& ds) {
+  auto made = crane::make_crane<kModes>(spec, t, ds);
+  if (!made) return made.error();
+  auto inertia = stress::SubModelInertia<double>::build(*made->sub, made->outputs);
+  if (!inertia) return inertia.error();
+  return CraneWithInertia{std::move(*made), std::move(*inertia)};
+}
 
 struct Options {
   std::string output = "whole-boom-out";
@@ -163,19 +181,24 @@ int main(int argc, char** argv) {
   std::vector<double> tt, ds;
   crane::synthetic_cycle(tt, ds);
   auto t0 = Clock::now();
-  auto made = crane::make_crane<kModes>(spec, tt, ds);
-  if (!made) {
-    std::fprintf(stderr, "whole_boom_reference: %s\n", made.error().what().c_str());
-    return 1;
-  }
-  CraneT& cr = *made;
-  auto inertia = stress::SubModelInertia<double>::build(*cr.sub, cr.outputs);
-  if (!inertia) {
-    std::fprintf(stderr, "whole_boom_reference: %s\n", inertia.error().what().c_str());
-    return 1;
-  }
-  std::printf("crane (24 modes, sub-model density %g, %zu bricks): %.0f ms\n", opt.density,
+  auto made = make_crane_with_inertia(spec, tt, ds);
+  // The same crane with a force-driven x1 end (CraneSpec::submodel_drive): same boom and
+  // dynamics, so its hot spot is read from the same states.
+  crane::CraneSpec force_spec = spec;
+  force_spec.submodel_drive = stress::AttachmentDrive::force;
+  auto made_force = make_crane_with_inertia(force_spec, tt, ds);
+  for (const Status& st : {made.status(), made_force.status()})
+    if (!st) {
+      std::fprintf(stderr, "whole_boom_reference: %s\n", st.error().what().c_str());
+      return 1;
+    }
+  CraneT& cr = made->crane;
+  const auto& inertia = made->inertia;
+  CraneT& crf = made_force->crane;
+  const auto& inertia_force = made_force->inertia;
+  std::printf("cranes (24 modes, sub-model density %g, %zu bricks): %.0f ms\n", opt.density,
               cr.sub->mesh().hexes().size(), ms_since(t0));
+  Eigen::VectorXd y_force(crf.fused->num_outputs());
 
   // The cycle, twice (deterministic): the first run finds the hot spot's extremes, the second
   // keeps the states at the chosen instants.
@@ -190,8 +213,7 @@ int main(int argc, char** argv) {
     nominal = y(cr.nominal_row) / 1e6;
     hot_inertia =
         hot +
-        inertia->rows().row(cr.hot_spot_row).dot(crane::boom_inertia_coordinates(cr.scene, s)) /
-            1e6;
+        inertia.rows().row(cr.hot_spot_row).dot(crane::boom_inertia_coordinates(cr.scene, s)) / 1e6;
   };
   std::vector<long> keep;
   for (long k = 0; k <= steps; k += 5000) keep.push_back(k);  // every 0.5 s
@@ -225,6 +247,12 @@ int main(int argc, char** argv) {
           history_hot.push_back(in.hot_sub_inertia);
         }
       } else if (std::binary_search(keep.begin(), keep.end(), k)) {
+        crf.fused->evaluate(s.coordinates<0>().p, y_force);
+        in.hot_forced =
+            (y_force(crf.hot_spot_row) + inertia_force.rows()
+                                             .row(crf.hot_spot_row)
+                                             .dot(crane::boom_inertia_coordinates(cr.scene, s))) /
+            1e6;
         in.t = double(s.t);
         in.state = s;
         instants.push_back(in);
@@ -277,42 +305,6 @@ int main(int argc, char** argv) {
     std::printf("whole boom: %zu bricks, %ld DOFs, factorized in %.0f ms\n", num_bricks,
                 static_cast<long>(dofs.size()), ms_since(t0));
 
-    // A force-driven variant of the sub-model (an experiment, not the paper's method): the same
-    // detail mesh clamped at its x0 end and loaded at its x1 end by the beam's section forces
-    // there (the end forces K_e u_e of the boom element inside the segment at x1), and by its own
-    // gravity and inertia. Statically determinate, so its bending moment at the detail does not
-    // depend on how stiff the brick segment is compared with the beam.
-    fe::Mesh detail_mesh = cr.detail.mesh;
-    const Index end_master = detail_mesh.add_node(Vector3d(spec.submodel_x1, 0, 0));
-    detail_mesh.add_rigid_link(end_master, cr.detail.end_section_x1);
-    auto forced = stress::SubModel::build(
-        std::move(detail_mesh), {{Vector3d(spec.submodel_x0, 0, 0), cr.detail.end_section_x0}});
-    if (!forced) {
-      std::fprintf(stderr, "whole_boom_reference: %s\n", forced.error().what().c_str());
-      return 1;
-    }
-    const fe::BeamElement* inner = nullptr;
-    for (const auto& e : cr.boom.mesh.beams())
-      for (int side = 0; side < 2; ++side)
-        if (e.nodes[std::size_t(side)] == cr.boom.node_x1 &&
-            cr.boom.mesh.node(e.nodes[std::size_t(1 - side)]).x() < spec.submodel_x1)
-          inner = &e;
-    if (!inner) {
-      std::fprintf(stderr, "whole_boom_reference: no boom element inside the sub-model at x1\n");
-      return 1;
-    }
-    const int x1_slot = inner->nodes[1] == cr.boom.node_x1 ? 6 : 0;
-    const fe::Matrix12d k_inner = fe::beam_stiffness(cr.boom.mesh, *inner);
-    auto phi_inner = stress::boundary_modes(
-        cr.boom.data,
-        {stress::HostPoint::at_node(inner->nodes[0]), stress::HostPoint::at_node(inner->nodes[1])});
-    if (!phi_inner) {
-      std::fprintf(stderr, "whole_boom_reference: %s\n", phi_inner.error().what().c_str());
-      return 1;
-    }
-    const fe::DofMap& fdofs = forced->model().dofs;
-    MatrixXd forced_response(fdofs.size(), static_cast<Index>(instants.size()));
-
     // Loads per instant, in the boom frame.
     t0 = Clock::now();
     const auto& p_spec = spec;
@@ -347,18 +339,6 @@ int main(int argc, char** argv) {
         f(dofs.dof(node_b, c)) += rod_force(c);
       }
       loads.col(static_cast<Index>(k)) = f;
-      {  // the force-driven sub-model's load
-        const Eigen::Matrix<double, 12, 1> end_forces =
-            k_inner * (*phi_inner * s.coordinates<0>().p);
-        VectorXd field_f = VectorXd::Zero(fdofs.size());
-        for (Index n = 0; n < cr.detail.mesh.num_nodes(); ++n) {
-          const Vector3d fn = g - acceleration(cr.detail.mesh.node(n));
-          for (int c = 0; c < 3; ++c) field_f(fdofs.dof(n, c)) = fn(c);
-        }
-        VectorXd ff = forced->model().mass_all * field_f;
-        for (int c = 0; c < 6; ++c) ff(fdofs.dof(end_master, c)) += end_forces(x1_slot + c);
-        forced_response.col(static_cast<Index>(k)) = forced->load_response(ff);
-      }
       // Balance with the hinge force of the simulation (-lambda on the boom, marker j).
       Vector3d total = a.transpose() * -s.lambda.segment<3>(i_rev);
       double moment_z = 0;
@@ -379,11 +359,6 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "whole_boom_reference: %s\n", rows.error().what().c_str());
       return 1;
     }
-    auto forced_rows = cr.outputs.rows(*forced, forced_response);
-    if (!forced_rows) {
-      std::fprintf(stderr, "whole_boom_reference: %s\n", forced_rows.error().what().c_str());
-      return 1;
-    }
     std::printf("whole boom: %zu load cases solved in %.0f ms\n", instants.size(), ms_since(t0));
 
     // Results.
@@ -400,7 +375,7 @@ int main(int argc, char** argv) {
       const double whole_hot = (*rows)(cr.hot_spot_row, static_cast<Index>(k)) / 1e6;
       const double whole_nominal = (*rows)(cr.nominal_row, static_cast<Index>(k)) / 1e6;
       const Instant& in = instants[k];
-      const double forced_hot = (*forced_rows)(cr.hot_spot_row, static_cast<Index>(k)) / 1e6;
+      const double forced_hot = in.hot_forced;
       char line[320];
       std::snprintf(line, sizeof line, "%.4f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3e,%.3e,%.6f\n", in.t,
                     in.hot_sub, in.hot_sub_inertia, whole_hot, in.nominal_sub, whole_nominal,

@@ -41,6 +41,10 @@ struct CraneSpec {
   /// Longest sub-model brick along x away from the toes (0: the generator's grading, the paper's
   /// sub-model; see fe::RhsAttachmentSpec::max_element_length).
   double submodel_max_element_length = 0.0;
+  /// How the sub-model's x1 end is driven: by the boom's displacement (the paper; both ends),
+  /// or by the boom's section force there, the x0 end holding it (stress/sub_model.hpp; needs
+  /// the end at a boom node; docs/accuracy-vs-time.md compares them with a whole-boom model).
+  stress::AttachmentDrive submodel_drive = stress::AttachmentDrive::displacement;
   double wall = 0.004;
   fe::Hex8Formulation formulation = fe::Hex8Formulation::incompatible_modes;
   /// false: the boom has nodes at the sub-model's ends (the paper). true: it does not, and the

@@ -24,6 +24,7 @@
 #include <flexstress/reduction/modal_geometric_stiffness.hpp>
 #include <flexstress/stress/fused_stress.hpp>
 #include <flexstress/stress/host_point.hpp>
+#include <flexstress/stress/section_force_modes.hpp>
 #include <flexstress/stress/stress_outputs.hpp>
 #include <flexstress/stress/sub_model.hpp>
 #include <flexstress/stress/sub_model_inertia.hpp>
@@ -153,9 +154,14 @@ Result<Crane<N, StorageLimit, Scalar, EffectList>> make_stroke_crane(
   auto detail = fe::make_rhs_attachment_mesh(ds);
   if (!detail) return detail.error();
   cr.detail = std::move(*detail);
-  auto sub =
-      stress::SubModel::build(cr.detail.mesh, {{Vector3d(ds.x0, 0, 0), cr.detail.end_section_x0},
-                                               {Vector3d(ds.x1, 0, 0), cr.detail.end_section_x1}});
+  const bool forced = spec.submodel_drive == stress::AttachmentDrive::force;
+  if (forced && spec.attach_between_nodes)
+    return make_error(ErrorCode::invalid_argument,
+                      "crane: a force-driven sub-model end needs a boom node there "
+                      "(attach_between_nodes is set)");
+  auto sub = stress::SubModel::build(
+      cr.detail.mesh, {{Vector3d(ds.x0, 0, 0), cr.detail.end_section_x0},
+                       {Vector3d(ds.x1, 0, 0), cr.detail.end_section_x1, spec.submodel_drive}});
   if (!sub) return sub.error();
   cr.sub.emplace(std::move(*sub));
   // Outputs: the hot spot at the toe's centre (IIW type a, linear), the paper's two strain
@@ -201,6 +207,19 @@ Result<Crane<N, StorageLimit, Scalar, EffectList>> make_stroke_crane(
                                      host_point(cr.boom, spec.submodel_x1, spec.interpolation)});
   if (!phi) return phi.error();
   cr.boundary_modes = std::move(*phi);
+  if (forced) {
+    // The x1 end carries the force and moment of the boom element inside the segment there.
+    Index inner = -1;
+    const auto& beams = cr.boom.mesh.beams();
+    for (std::size_t e = 0; e < beams.size(); ++e)
+      for (int end = 0; end < 2; ++end)
+        if (beams[e].nodes[std::size_t(end)] == cr.boom.node_x1 &&
+            cr.boom.mesh.node(beams[e].nodes[std::size_t(1 - end)]).x() < spec.submodel_x1)
+          inner = static_cast<Index>(e);
+    auto f = stress::section_force_modes(cr.boom.mesh, cr.boom.data, inner, cr.boom.node_x1);
+    if (!f) return f.error();
+    cr.boundary_modes.bottomRows(6) = *f;
+  }
   auto fused = stress::FusedStress<N, Scalar>::build(*rows, cr.boundary_modes);
   if (!fused) return fused.error();
   cr.fused.emplace(std::move(*fused));

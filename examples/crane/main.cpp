@@ -35,6 +35,9 @@ const char* kUsage =
     "                   from the stroke cycle, instead of prescribing the stroke; 10 modes\n"
     "  --submodel-inertia  add the detail's own weight and inertia to its stresses (the\n"
     "                   paper leaves it out; off by default)\n"
+    "  --force-driven   drive the detail's far end by the boom's section force and\n"
+    "                   moment instead of its displacement (not the paper's; closer to a\n"
+    "                   brick model of the whole boom, docs/accuracy-vs-time.md)\n"
     "  --operators K    batch mode: K operators each drive their own version of the\n"
     "                   cycle (lift height, pace, corrections), in parallel; writes\n"
     "                   operators.csv and a line per operator (10 modes, stroke drive)\n"
@@ -131,6 +134,10 @@ int main(int argc, char** argv) {
     }
     if (key == "--submodel-inertia") {
       o.with_inertia = true;
+      continue;
+    }
+    if (key == "--force-driven") {
+      spec.submodel_drive = flexstress::stress::AttachmentDrive::force;
       continue;
     }
     const bool known = key == "--payload" || key == "--step" || key == "--density" ||

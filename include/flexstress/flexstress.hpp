@@ -75,6 +75,7 @@
 #include "flexstress/stress/host_point.hpp"
 #include "flexstress/stress/hot_spot.hpp"
 #include "flexstress/stress/modal_stress_modes.hpp"
+#include "flexstress/stress/section_force_modes.hpp"
 #include "flexstress/stress/stress_outputs.hpp"
 #include "flexstress/stress/sub_model.hpp"
 #include "flexstress/stress/sub_model_inertia.hpp"

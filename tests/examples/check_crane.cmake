@@ -87,6 +87,19 @@ execute_process(COMMAND "${CRANE}" --modes 99 RESULT_VARIABLE rc OUTPUT_VARIABLE
 if(rc EQUAL 0 OR NOT err MATCHES "--modes: this build has the mode counts 10")
   message(FATAL_ERROR "--modes 99 should fail naming the option and the counts built (exit ${rc}): ${err}")
 endif()
+# The far end driven by the boom's section force (--force-driven): a brick model of the whole
+# boom (bench/accuracy_vs_time/whole_boom.cpp) puts the paper's displacement-driven hot spot 11 %
+# high at the static pose and this one 3 % high, so it must read lower, by about 7 %.
+run_crane(force_driven --force-driven)
+key(steps steps_force)
+key(static_hotspot_MPa hot_rest_force)
+string(REGEX REPLACE "\\..*" "" hot_rest_int "${hot_rest}")
+math(EXPR low "${hot_rest_int} * 90 / 100")
+math(EXPR high "${hot_rest_int} * 96 / 100")
+if(NOT steps_force EQUAL 11000 OR hot_rest_force LESS low OR hot_rest_force GREATER high)
+  message(FATAL_ERROR "--force-driven: ${steps_force} steps, static hot spot ${hot_rest_force} MPa, "
+                      "expected 90-96 % of the displacement-driven ${hot_rest} MPa")
+endif()
 run_crane(hydraulic --hydraulic)
 key(steps steps)
 key(energy_balance_rel balance)

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <doctest/doctest.h>
 
@@ -14,6 +16,7 @@
 #include <flexstress/fe/static_solver.hpp>
 #include <flexstress/stress/fused_stress.hpp>
 #include <flexstress/stress/host_point.hpp>
+#include <flexstress/stress/section_force_modes.hpp>
 #include <flexstress/stress/stress_outputs.hpp>
 #include <flexstress/stress/sub_model.hpp>
 
@@ -31,6 +34,20 @@ fe::RhsAttachmentMesh rhs(double density, double x0 = 0.5, double x1 = 0.8) {
   spec.density = density;
   spec.x0 = x0;
   spec.x1 = x1;
+  auto r = fe::make_rhs_attachment_mesh(spec);
+  REQUIRE_MESSAGE(r.ok(), r.error().what());
+  return std::move(r).value();
+}
+
+// The RHS segment at density 0.6 with bricks at most 20 mm long along x (long enough to carry a
+// moment gradient) and sections at `stations`.
+fe::RhsAttachmentMesh capped_rhs(double x0, double x1, std::vector<double> stations = {}) {
+  fe::RhsAttachmentSpec spec;
+  spec.density = 0.6;
+  spec.x0 = x0;
+  spec.x1 = x1;
+  spec.max_element_length = 0.02;
+  spec.extra_x_stations = std::move(stations);
   auto r = fe::make_rhs_attachment_mesh(spec);
   REQUIRE_MESSAGE(r.ok(), r.error().what());
   return std::move(r).value();
@@ -125,18 +142,11 @@ TEST_CASE("a whole boom of bricks clamped at one end: tip load gives beam theory
   // with the clamp as the only attachment). Euler-Bernoulli: M(x) = P (1.0 - x) about z (the
   // hook's offset below the axis adds no moment to a vertical load), sigma_xx = -M y / I on the
   // flanges, read at least a section height from the clamp, the rib and the hook.
-  fe::RhsAttachmentSpec spec;
-  spec.density = 0.6;
-  spec.x0 = 0.0;
-  spec.x1 = 1.2;
-  spec.max_element_length = 0.02;
-  spec.extra_x_stations = {1.0};
-  auto r = fe::make_rhs_attachment_mesh(spec);
-  REQUIRE_MESSAGE(r.ok(), r.error().what());
-  fe::Mesh mesh = r->mesh;
+  const auto r = capped_rhs(0.0, 1.2, {1.0});
+  fe::Mesh mesh = r.mesh;
   const Index hook = mesh.add_node(Vector3d(1.0, -0.125, 0.0));
-  mesh.add_rigid_link(hook, r->section_nodes(1.0));
-  auto s = SubModel::build(std::move(mesh), {{Vector3d::Zero(), r->end_section_x0}});
+  mesh.add_rigid_link(hook, r.section_nodes(1.0));
+  auto s = SubModel::build(std::move(mesh), {{Vector3d::Zero(), r.end_section_x0}});
   REQUIRE_MESSAGE(s.ok(), s.error().what());
   const auto& dofs = s->model().dofs;
   const double p = -1000.0;
@@ -370,6 +380,124 @@ TEST_CASE("sub-model bad input names the attachment, node or point") {
   CHECK(bad.error().message.find("host node 999") != std::string::npos);
   auto bad_xi = boundary_modes(host.data, {HostPoint::between(0, 1, 1.5)});
   CHECK_FALSE(bad_xi.ok());
+}
+
+TEST_CASE("a force-driven end: the segment's stress follows statics, not its stiffness") {
+  // The segment 0.2 to 1.1 m held at x0 and loaded at the x1 master by a moment M_z, then by a
+  // force F_y. Statics: M_z(x) = M, then F_y (x1 - x) (the load's moment about the section at
+  // x); Euler-Bernoulli sigma_xx = -M_z y / I, read a section height from the ends and the rib.
+  // Bricks at most 20 mm long: the generator's graded zones alone put a single 0.25 m brick
+  // between the end and the rib, which cannot carry a moment gradient (it reads 9 % low at
+  // 0.3 m and 12 % high at 0.45 m).
+  const auto r = capped_rhs(0.2, 1.1);
+  auto s =
+      SubModel::build(r.mesh, {{Vector3d(0.2, 0, 0), r.end_section_x0},
+                               {Vector3d(1.1, 0, 0), r.end_section_x1, AttachmentDrive::force}});
+  REQUIRE_MESSAGE(s.ok(), s.error().what());
+  CHECK(s->drive(0) == AttachmentDrive::displacement);
+  CHECK(s->drive(1) == AttachmentDrive::force);
+  const fe::BeamSection sec = fe::rectangular_hollow_section(0.150, 0.100, 0.004);
+  const double c = 0.075;
+  std::vector<Vector3d> points;
+  for (double x : {0.35, 0.85})
+    for (double y : {c, -c}) points.emplace_back(x, y, 0.0);
+  auto h = s->stress_influence(points);
+  REQUIRE(h.ok());
+  for (int load = 0; load < 2; ++load) {
+    VectorXd b = VectorXd::Zero(12);
+    b(load == 0 ? 11 : 7) = load == 0 ? 2000.0 : 5000.0;  // N m about z, or N along y
+    const VectorXd sigma = *h * b;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Vector3d& p = points[i];
+      CAPTURE(load);
+      CAPTURE(p.transpose());
+      const double moment = load == 0 ? 2000.0 : 5000.0 * (1.1 - p.x());
+      CHECK(sigma(6 * static_cast<Index>(i)) ==
+            doctest::Approx(-moment * p.y() / sec.iz).epsilon(0.02));
+    }
+  }
+  // The held end's rigid motion still gives no stress; the fused form equals the re-solve.
+  VectorXd b = rigid_boundary(*s, Vector3d(1, 2, 3), Vector3d(0.1, 0.2, 0.3));
+  b.tail<6>().setZero();                                  // no load at the force-driven end
+  CHECK((*h * b).cwiseAbs().maxCoeff() < 1e-10 * 210e9);  // strain at round-off level
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  for (Index k = 0; k < 12; ++k) b(k) = uni(rng) * (k < 6 ? 1e-3 : 1e3);
+  auto ref = s->stresses_by_resolve(points, b);
+  REQUIRE(ref.ok());
+  const VectorXd y = *h * b;
+  CHECK((y - *ref).cwiseAbs().maxCoeff() < 1e-9 * y.cwiseAbs().maxCoeff());
+  // Every end force-driven: nothing holds it.
+  auto loose =
+      SubModel::build(r.mesh, {{Vector3d(0.2, 0, 0), r.end_section_x0, AttachmentDrive::force},
+                               {Vector3d(1.1, 0, 0), r.end_section_x1, AttachmentDrive::force}});
+  REQUIRE_FALSE(loose.ok());
+  CHECK(loose.error().message.find("all 2 attachments are force-driven") != std::string::npos);
+}
+
+TEST_CASE("section-force modes of a reduced cantilever give the section's shear and moment") {
+  // A 2 m RHS cantilever in 20 beam elements, reduced (Craig-Bampton, interfaces at the root and
+  // the tip, so its static modes span the tip-load solution exactly). The full model's static
+  // deflection under a tip force P_y, written in the body's modes (plus its rigid motions, which
+  // carry no force), gives section forces K_e Phi_e p that statics knows: at the node x the
+  // element on its root side receives from the tip side F_y = P and M_z = P (L - x).
+  const double length = 2.0, load = 3000.0;
+  const fe::BeamSection sec = fe::rectangular_hollow_section(0.150, 0.100, 0.004);
+  auto beam = testing::make_beam_body(length, sec, 20, {0.0, length}, 4);
+  const Index root = beam.interface_nodes[0], tip = beam.interface_nodes[1];
+  fe::BoundaryConditions bc;
+  bc.clamp(root);
+  auto model = fe::assemble(beam.mesh, bc);
+  REQUIRE(model.ok());
+  auto solver = fe::StaticSolver::factorize(beam.mesh, *model);
+  REQUIRE(solver.ok());
+  VectorXd f = VectorXd::Zero(model->dofs.size());
+  f(model->dofs.dof(tip, 1)) = load;
+  const VectorXd u = solver->solve(f);
+  // u in the modes and the six rigid motions of the body frame, by least squares over all nodes.
+  const Index nn = beam.mesh.num_nodes(), n = beam.data.num_modes;
+  std::vector<HostPoint> all;
+  for (Index k = 0; k < nn; ++k) all.push_back(HostPoint::at_node(k));
+  auto phi = boundary_modes(beam.data, all);
+  REQUIRE(phi.ok());
+  MatrixXd basis = MatrixXd::Zero(6 * nn, n + 6);
+  basis.leftCols(n) = *phi;
+  VectorXd target(6 * nn);
+  for (Index k = 0; k < nn; ++k) {
+    for (int c = 0; c < 6; ++c) target(6 * k + c) = u(model->dofs.dof(k, c));
+    for (int c = 0; c < 3; ++c) {
+      basis(6 * k + c, n + c) = 1.0;
+      const Vector3d rot = Vector3d::Unit(c).cross(beam.mesh.node(k));
+      basis.block<3, 1>(6 * k, n + 3 + c) = rot;
+      basis(6 * k + 3 + c, n + 3 + c) = 1.0;
+    }
+  }
+  const VectorXd coeffs = basis.colPivHouseholderQr().solve(target);
+  REQUIRE((basis * coeffs - target).norm() < 1e-9 * target.norm());
+  const VectorXd p = coeffs.head(n);
+  for (std::size_t e = 0; e < beam.mesh.beams().size(); e += 6) {
+    const auto& el = beam.mesh.beams()[e];
+    const Index outer = beam.mesh.node(el.nodes[1]).x() > beam.mesh.node(el.nodes[0]).x()
+                            ? el.nodes[1]
+                            : el.nodes[0];
+    auto modes = section_force_modes(beam.mesh, beam.data, static_cast<Index>(e), outer);
+    REQUIRE(modes.ok());
+    const VectorXd section = *modes * p;
+    const double x = beam.mesh.node(outer).x();
+    CAPTURE(x);
+    CHECK(section(1) == doctest::Approx(load).epsilon(1e-6));
+    CHECK(section(5) == doctest::Approx(load * (length - x)).epsilon(1e-6));
+    CHECK(std::abs(section(0)) + std::abs(section(2)) + std::abs(section(3)) +
+              std::abs(section(4)) <
+          1e-6 * load);
+  }
+  // Bad input names what is wrong.
+  auto no_element = section_force_modes(beam.mesh, beam.data, 99, tip);
+  REQUIRE_FALSE(no_element.ok());
+  CHECK(no_element.error().message.find("beam element 99 does not exist") != std::string::npos);
+  auto not_its_node = section_force_modes(beam.mesh, beam.data, 0, tip);
+  REQUIRE_FALSE(not_its_node.ok());
+  CHECK(not_its_node.error().message.find("is not a node of beam element 0") != std::string::npos);
 }
 
 TEST_CASE("the hot-spot stress is insensitive to the sub-model mesh (three densities)") {

@@ -27,6 +27,12 @@ enum class BoundaryInterpolation {
   hermite,  ///< cubic Hermite transverse displacement, its slope as rotation; linear axial, twist
 };
 
+/// How a sub-model attachment passes the host's state at its point (sub_model.hpp).
+enum class AttachmentDrive {
+  displacement,  ///< the master follows the host's displacement and rotation (the paper)
+  force,         ///< the master carries the host's section force and moment
+};
+
 /// A host point: at `node_a` (node_b < 0), or at fraction `xi` in [0, 1] from node_a to node_b
 /// of a straight beam element.
 struct HostPoint {

@@ -7,8 +7,16 @@
 //
 // Coordinates: the sub-model mesh is given in the host body's frame (the boom's frame for the
 // crane), so u_b = Phi_b p needs no rotation.
+//
+// Force-driven ends (not in the paper): an attachment may instead carry the host's section force
+// and moment at its master (AttachmentDrive::force, with section_force_modes.hpp), the master
+// then free; its 6 boundary values are that force and moment, and its columns of U_b the
+// responses to unit loads. With one displacement-driven end and the others force-driven, the
+// sub-model is statically determinate: its stresses no longer depend on how its stiffness
+// compares with the host's (docs/accuracy-vs-time.md measures the difference on the crane).
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,14 +41,17 @@ namespace flexstress::stress {
 struct SubModelAttachment {
   Vector3d master = Vector3d::Zero();
   std::vector<Index> face_nodes;
+  AttachmentDrive drive = AttachmentDrive::displacement;
 };
 
 class SubModel {
  public:
-  /// Adds the masters and rigid links to `mesh`, prescribes all six DOFs of every master,
-  /// factorizes once and solves for each unit boundary DOF. Fails, naming the attachment and
-  /// node, for empty or overlapping face sets and nodes that do not exist; a sub-model the
-  /// attachments leave free to move gets the static solver's explanation.
+  /// Adds the masters and rigid links to `mesh`, prescribes all six DOFs of every
+  /// displacement-driven master, factorizes once and solves for each unit boundary value (a unit
+  /// displacement, or a unit load on a force-driven master). Fails, naming the attachment and
+  /// node, for empty or overlapping face sets, nodes that do not exist and attachments that are
+  /// all force-driven; a sub-model the attachments leave free to move otherwise gets the static
+  /// solver's explanation.
   FLEXSTRESS_PRECOMPUTE
   static Result<SubModel> build(fe::Mesh mesh, const std::vector<SubModelAttachment>& attachments) {
     if (attachments.empty())
@@ -70,13 +81,22 @@ class SubModel {
         o = static_cast<int>(a);
       }
     }
+    if (std::none_of(attachments.begin(), attachments.end(), [](const SubModelAttachment& a) {
+          return a.drive == AttachmentDrive::displacement;
+        }))
+      return make_error(ErrorCode::invalid_argument, "sub-model: all ", attachments.size(),
+                        " attachments are force-driven; at least one must be displacement-driven "
+                        "to hold the sub-model (the others' loads are reacted there)");
     SubModel s;
     fe::BoundaryConditions bc;
     for (const auto& att : attachments) {
       const Index m = mesh.add_node(att.master);
       mesh.add_rigid_link(m, att.face_nodes);
       s.masters_.push_back(m);
-      bc.clamp(m);  // components 0..5 in order: v = u_b
+      s.drives_.push_back(att.drive);
+      // Components 0..5 in order: the prescribed values are the displacement-driven blocks of
+      // the boundary vector, in attachment order.
+      if (att.drive == AttachmentDrive::displacement) bc.clamp(m);
     }
     s.mesh_ = std::make_unique<fe::Mesh>(std::move(mesh));
     auto model = fe::assemble(*s.mesh_, bc);
@@ -90,11 +110,10 @@ class SubModel {
     const Index nb = 6 * static_cast<Index>(attachments.size());
     const Index nd = s.model_->dofs.size();
     s.unit_ = MatrixXd::Zero(nd, nb);
-    const VectorXd zero_load = VectorXd::Zero(nd);
     for (Index j = 0; j < nb; ++j) {
       VectorXd v = VectorXd::Zero(nb);
       v(j) = 1.0;
-      s.unit_.col(j) = s.solver_->solve(zero_load, v);
+      s.unit_.col(j) = s.solve(v);
     }
     auto locator = fe::BrickLocator::build(*s.mesh_);
     if (!locator) return locator.error();
@@ -103,12 +122,15 @@ class SubModel {
   }
 
   Index num_attachments() const { return static_cast<Index>(masters_.size()); }
+  /// Length of the boundary vector: 6 values (displacements and rotations, or force and moment)
+  /// per attachment.
   Index num_boundary_dofs() const { return 6 * num_attachments(); }
+  AttachmentDrive drive(Index a) const { return drives_[static_cast<std::size_t>(a)]; }
   const fe::Mesh& mesh() const { return *mesh_; }
   const fe::AssembledModel& model() const { return *model_; }
   /// Master node of attachment a in mesh().
   Index master_node(Index a) const { return masters_[static_cast<std::size_t>(a)]; }
-  /// All-DOF displacements per unit boundary DOF (dofs x 6 k).
+  /// All-DOF displacements per unit boundary value (dofs x 6 k).
   const MatrixXd& unit_displacements() const { return unit_; }
   const fe::BrickLocator& locator() const { return *locator_; }
 
@@ -172,7 +194,7 @@ class SubModel {
   /// the model need not be in equilibrium; the masters take the reactions.
   FLEXSTRESS_PRECOMPUTE
   VectorXd load_response(const VectorXd& load) const {
-    return solver_->solve(load, VectorXd::Zero(num_boundary_dofs()));
+    return solver_->solve(load, VectorXd::Zero(num_prescribed()));
   }
 
   /// The responses to the 12 unit inertia coordinates of a rigid host-frame motion (dofs x 12):
@@ -207,10 +229,22 @@ class SubModel {
   }
 
   /// The reference path: all-DOF displacements for boundary values u_b by a fresh solve with
-  /// the factorization (what the influence matrix replaces).
+  /// the factorization (what the influence matrix replaces). The blocks of force-driven
+  /// attachments are loads on their masters.
   FLEXSTRESS_PRECOMPUTE
   VectorXd solve(const VectorXd& u_b) const {
-    return solver_->solve(VectorXd::Zero(model_->dofs.size()), u_b);
+    VectorXd load = VectorXd::Zero(model_->dofs.size());
+    VectorXd prescribed(num_prescribed());
+    Index next = 0;
+    for (Index a = 0; a < num_attachments(); ++a) {
+      if (drive(a) == AttachmentDrive::displacement) {
+        prescribed.segment<6>(next) = u_b.segment<6>(6 * a);
+        next += 6;
+      } else {
+        for (int c = 0; c < 6; ++c) load(model_->dofs.dof(master_node(a), c)) = u_b(6 * a + c);
+      }
+    }
+    return solver_->solve(load, prescribed);
   }
 
   /// Reference path for stresses at points: re-solve, then recover (allocates; not per step).
@@ -233,7 +267,14 @@ class SubModel {
   std::unique_ptr<fe::AssembledModel> model_;
   std::unique_ptr<fe::StaticSolver> solver_;
   std::unique_ptr<fe::BrickLocator> locator_;
+  // Number of prescribed values: six per displacement-driven attachment.
+  Index num_prescribed() const {
+    return 6 * static_cast<Index>(
+                   std::count(drives_.begin(), drives_.end(), AttachmentDrive::displacement));
+  }
+
   std::vector<Index> masters_;
+  std::vector<AttachmentDrive> drives_;
   MatrixXd unit_;
 };
 

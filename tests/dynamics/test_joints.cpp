@@ -1,6 +1,7 @@
 // Joint and driver equations: analytic constraint Jacobians B and convective terms checked
 // against finite differences of the constraint functions along a motion q(t) = q0 o exp(t v)
-// (constant velocities, so d2 Phi / dt2 = conv exactly), on a flexible and a rigid body.
+// (constant velocities, so d2 Phi / dt2 = conv exactly), on a flexible and a rigid body; and an
+// evaluation without rates (what Newton iterations use) gives the same Phi and B.
 #include <cmath>
 #include <random>
 
@@ -95,11 +96,17 @@ TEST_CASE("constraint Jacobians and convective terms of every joint match finite
       scene.integrate(sd, AllJoints::VecV(dt * s.v));
       sd.t = s.t + dt;
       AllJoints::Workspace w;
-      scene.evaluate(sd, w);
+      scene.evaluate(sd, w, /*rates=*/false);  // as in a Newton iteration
       return AllJoints::VecC(w.phi);
     };
     AllJoints::Workspace w;
     scene.evaluate(s, w);
+    // The implicit integrator's Newton iterations evaluate without rates: Phi and B must be
+    // the same to the last bit as in the full evaluation.
+    AllJoints::Workspace positions_only;
+    scene.evaluate(s, positions_only, /*rates=*/false);
+    CHECK(positions_only.phi == w.phi);
+    CHECK(positions_only.jac == w.jac);
     const double e1 = 1e-6, e2 = 1e-4;
     const AllJoints::VecC rate_fd = (phi_at(e1) - phi_at(-e1)) / (2 * e1);
     const AllJoints::VecC rate = w.jac * s.v + w.phi_t;

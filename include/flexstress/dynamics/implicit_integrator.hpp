@@ -262,7 +262,7 @@ class ImplicitIntegrator {
       // velocity terms and the penalty forces at the current iterate; with kHz modes excited
       // those are large, and an unchecked stale matrix diverges within a few iterations.
       fresh = false;
-      scene_->evaluate(s, ws_);
+      scene_->evaluate(s, ws_, /*rates=*/false);  // the residual needs Phi and B only
       if (!have_factorization_ || !settings_.reuse_factorization) {
         factorize(s);
         fresh = true;

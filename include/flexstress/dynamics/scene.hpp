@@ -333,10 +333,11 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   }
 
   /// Constraint values, Jacobian, explicit time derivative and convective terms at s.t (call
-  /// update_kinematics first).
-  void update_constraints(const State& s, Workspace& w) const {
+  /// update_kinematics first). With rates == false, phi_t and conv are left incomplete (the
+  /// marker velocities are taken as zero): for Newton iterations, which need only Phi and B.
+  void update_constraints(const State& s, Workspace& w, bool rates = true) const {
     detail::for_each_index(
-        [&](auto k) { evaluate_joint<static_cast<int>(decltype(k)::value)>(s.t, w); },
+        [&](auto k) { evaluate_joint<static_cast<int>(decltype(k)::value)>(s.t, w, rates); },
         std::make_index_sequence<num_joints>{});
   }
 
@@ -411,10 +412,10 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   /// update_kinematics(s, w) first).
   void commit_force_states(State& s, const Workspace& w) const { update_force_states<false>(s, w); }
 
-  /// All of the above at the state's time.
-  void evaluate(const State& s, Workspace& w) const {
+  /// All of the above at the state's time (rates: as in update_constraints).
+  void evaluate(const State& s, Workspace& w, bool rates = true) const {
     update_kinematics(s, w);
-    update_constraints(s, w);
+    update_constraints(s, w, rates);
     update_dynamics(s, w);
   }
 
@@ -650,7 +651,7 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
 
  private:
   template <int K>
-  void evaluate_joint(Scalar t, Workspace& w) const {
+  void evaluate_joint(Scalar t, Workspace& w, bool rates) const {
     using Kind = std::tuple_element_t<static_cast<std::size_t>(K), std::tuple<J...>>;
     constexpr int bi = Kind::body_i, bj = Kind::body_j;
     constexpr int row0 = joint_offset[K];
@@ -665,8 +666,8 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
     const auto& inst = std::get<static_cast<std::size_t>(K)>(joints);
     MarkerEval<Scalar, modes_of<bi>> mi;
     MarkerEval<Scalar, modes_of<bj>> mj;
-    mi.evaluate(inst.marker_i, kinematics<bi>(w));
-    mj.evaluate(inst.marker_j, kinematics<bj>(w));
+    mi.evaluate(inst.marker_i, kinematics<bi>(w), rates);
+    mj.evaluate(inst.marker_j, kinematics<bj>(w), rates);
     Kind::evaluate(inst.params, mi, mj, t, [&](int r, const auto& row) {
       const int i = row0 + r;
       w.phi(i) = row.phi;
@@ -699,9 +700,12 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   template <int BI, int BJ, class Rows, class M>
   static void add_gram_block(const Rows& rows, Scalar alpha, M& m) {
     constexpr int ni = body_nv[BI], nj = body_nv[BJ];
+    // Coefficient-based product: these blocks are small and fixed-size, and the general
+    // matrix-matrix kernel spends longer packing them than multiplying.
     m.template block<ni, nj>(body_offset[BI], body_offset[BJ]).noalias() +=
-        alpha * rows.template middleCols<ni>(body_offset[BI]).transpose() *
-        rows.template middleCols<nj>(body_offset[BJ]);
+        alpha * rows.template middleCols<ni>(body_offset[BI])
+                    .transpose()
+                    .lazyProduct(rows.template middleCols<nj>(body_offset[BJ]));
   }
 
   static Vec6<Scalar> ground_velocity(const Workspace& w) {

@@ -67,6 +67,7 @@ int run_operators(const RunOptions& o, int first, int count, unsigned threads) {
   if (!meter) return 1;
   typename ImplicitIntegrator<Scene>::Settings settings;
   settings.step = o.step;
+  settings.acceleration_tolerance = o.tolerance;
   const double l0 = (o.spec.b - o.spec.c).norm();
 
   std::vector<OperatorOutcome> out(static_cast<std::size_t>(count));

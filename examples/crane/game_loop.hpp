@@ -54,6 +54,7 @@ int run_game_loop(const RunOptions& o, double render_hz, bool realtime) {
   typename Scene::State s = cr.initial;
   typename ImplicitIntegrator<Scene>::Settings settings;
   settings.step = o.step;
+  settings.acceleration_tolerance = o.tolerance;
   ImplicitIntegrator<Scene> integ(cr.scene, settings);
   if (Status st = integ.initialize(s); !st) {
     std::fprintf(stderr, "error: %s\n", st.error().what().c_str());

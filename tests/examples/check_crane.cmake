@@ -3,7 +3,7 @@
 # 2.9 kNm at the detail, sigma = M c / I), a hot spot above the nominal stress, finite results,
 # determinism (two runs write bit-identical histories), the energy balance of the work cycle
 # (work-energy theorem: |E - E0 - W_driver + D_damping| at most 1e-3 of max |E - E0|, and
-# smaller at h = 1 ms than at 2 ms), the other mode counts, the hydraulic drive (its stroke
+# smaller at h = 1 ms than at 2 ms), a looser Newton tolerance, the other mode counts, the hydraulic drive (its stroke
 # within 10 % of the planned 0.2 m lift, its energy balance with the oil force's work), the batch
 # of operators (parallel equals serial), the game loop (rendering does not change the physics),
 # the C interface (the same run through c_api/), and bad options' messages.
@@ -73,6 +73,18 @@ run_crane(h2ms --step 0.002)
 key(energy_balance_J balance_j_2ms)
 if(NOT balance_j LESS balance_j_2ms)
   message(FATAL_ERROR "energy residual ${balance_j} J at h = 1 ms, not below ${balance_j_2ms} J at 2 ms")
+endif()
+# A looser Newton tolerance (--tolerance 1e-3, the pick of docs/accuracy-vs-time.md) must give
+# the same hot-spot maximum and damage to the printed digits and still balance the energy
+# (measured: the hot-spot history moves by 2e-4 MPa of its 19 MPa range, the balance 1e-5).
+run_crane(tolerance --tolerance 1e-3)
+key(hotspot_max_MPa hot_max_tolerance)
+key(damage_per_cycle damage_tolerance)
+key(energy_balance_rel balance_tolerance)
+if(NOT hot_max_tolerance STREQUAL hot_max OR NOT damage_tolerance STREQUAL damage_single
+   OR NOT balance_tolerance LESS 1e-3)
+  message(FATAL_ERROR "--tolerance 1e-3: hot spot max ${hot_max_tolerance} MPa (${hot_max}), "
+                      "damage ${damage_tolerance} (${damage_single}), balance ${balance_tolerance}")
 endif()
 # Mode counts configured besides 10 (FLEXSTRESS_CRANE_EXTRA_MODES; none by default).
 foreach(modes IN LISTS EXTRA_MODES)
@@ -190,6 +202,7 @@ expect_refusal("unknown option '--speed'" --speed 2)
 expect_refusal("--payload expects a number, got 'heavy'" --payload heavy)
 expect_refusal("bad value '-5' for --payload" --payload -5)
 expect_refusal("bad value '0' for --step" --step 0)
+expect_refusal("bad value '0' for --tolerance" --tolerance 0)
 expect_refusal("bad value '0' for --operators" --operators 0)
 expect_refusal("--operators is built for the stroke-driven 10-mode crane" --operators 2 --hydraulic)
 expect_refusal("--game-loop is built for the stroke-driven 10-mode crane" --game-loop --hydraulic)

@@ -5,8 +5,9 @@
 # (work-energy theorem: |E - E0 - W_driver + D_damping| at most 1e-3 of max |E - E0|, and
 # smaller at h = 1 ms than at 2 ms), a looser Newton tolerance, the other mode counts, the
 # hydraulic drive (its stroke within 10 % of the planned 0.2 m lift, its energy balance with the
-# oil force's work), the batch of operators (parallel equals serial), the game loop (rendering does not change the physics),
-# the C interface (the same run through c_api/), and bad options' messages.
+# oil force's work), the batch of operators (parallel equals serial), the game loop (rendering
+# does not change the physics), the C interface (the same run through c_api/), and bad options'
+# messages.
 #   cmake -DCRANE=<exe> -DOUT=<dir> -P check_crane.cmake
 foreach(run 1 2)
   execute_process(COMMAND "${CRANE}" --quiet --output "${OUT}/run${run}"

@@ -21,18 +21,19 @@
 // g' = g/(h b)) is symmetric positive definite even when B is rank-deficient (redundant joints
 // such as a planar loop modelled in 3D, singular positions), so no KKT system is ever solved.
 // Modified Newton: S is factorized once and reused across iterations and steps until the
-// observed contraction rate says it is stale. After convergence the velocities are projected
-// onto B v + Phi_t = 0 with the same factorization, a projection orthogonal in the metric S
-// (dominated by M b'), which removes velocity drift.
+// observed contraction rate says it is stale; it is factorized within its envelope in a body
+// order that skips the zero blocks between bodies no joint joins (core/envelope_cholesky.hpp).
+// After convergence the velocities are projected onto B v + Phi_t = 0 with the same factorization,
+// a projection orthogonal in the metric S (dominated by M b'), which removes velocity drift.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include "flexstress/core/envelope_cholesky.hpp"
 #include "flexstress/core/scalar_traits.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/dynamics/scene.hpp"
@@ -124,8 +125,9 @@ class ImplicitIntegrator {
   explicit ImplicitIntegrator(const SceneT& scene, const Settings& settings = Settings())
       : scene_(&scene), settings_(settings) {
     iteration_.setZero(nv, nv);
-    // Sized (dynamic storage: the one allocation) and with a defined status before any copy.
-    llt_.compute(MatVV::Identity(nv, nv));
+    // The factor's storage and the body order that keeps its fill small (setup; dynamic
+    // storage: the one allocation). Entries outside the scene's pattern are zero by construction.
+    chol_.analyze(SceneT::block_pattern());
     for (VecV* v : {&r_, &dx_, &v_n_, &vd_n_, &a_n_, &a1_, &tmp_, &vd_prev_, &v_save_, &vd_save_})
       v->setZero(nv);
     e_.setZero(nc);
@@ -175,7 +177,7 @@ class ImplicitIntegrator {
             SceneT::joint_of_row(worst_row(ws_.phi)), ")");
       factorize_projection(s);
       dx_.noalias() = -alpha_ * ws_.jac.transpose() * ws_.phi;
-      llt_.solveInPlace(dx_);
+      chol_.solve_in_place(dx_);
       if (!dx_.allFinite()) {  // reported as not converged at the top of the loop
         violation = std::numeric_limits<Scalar>::quiet_NaN();
         continue;
@@ -205,14 +207,15 @@ class ImplicitIntegrator {
     iteration_.setZero();
     scene_->mass_blocks(ws_, iteration_);
     scene_->add_constraint_gram(ws_, alpha_, iteration_);
-    llt_.compute(iteration_);
+    chol_.compute(iteration_);
     have_factorization_ = false;
     s.lambda.setZero();
     for (int it = 0; it < max_iterations; ++it) {
       e_ = s.lambda + alpha_ * ws_.conv;
       r_ = ws_.force;
       r_.noalias() -= ws_.jac.transpose() * e_;  // no temporary: initialize() also runs mid-run
-      s.v_dot = llt_.solve(r_);
+      s.v_dot = r_;
+      chol_.solve_in_place(s.v_dot);
       e_.noalias() = ws_.jac * s.v_dot;  // product alone: no temporary
       e_ += ws_.conv;
       s.lambda += alpha_ * e_;
@@ -288,16 +291,16 @@ class ImplicitIntegrator {
         restored = true;
         continue;
       }
-      dx_ = llt_.solve(r_);  // (not -solve(): that evaluates into a heap temporary)
-      dx_ = -dx_;
+      dx_ = -r_;
+      chol_.solve_in_place(dx_);
       const Scalar size = max_abs(dx_);
       if (!std::isfinite(size)) break;
       // A stale matrix that contracts too slowly: refactorize and redo this iteration.
       if (!fresh && it > 0 && size > settings_.refactor_rate * previous) {
         factorize(s);
         fresh = true;
-        dx_ = llt_.solve(r_);
-        dx_ = -dx_;
+        dx_ = -r_;
+        chol_.solve_in_place(dx_);
       }
       previous = max_abs(dx_);
       stale_step = !fresh;
@@ -399,7 +402,7 @@ class ImplicitIntegrator {
     have_factorization_ = h.have_factorization;
     if (have_factorization_) {
       iteration_ = h.iteration;
-      llt_.compute(iteration_);
+      chol_.compute(iteration_);
     }
   }
 
@@ -413,7 +416,7 @@ class ImplicitIntegrator {
     scene_->add_modal_stiffness_damping(ws_, iteration_, Scalar(1), gamma_prime_);
     alpha_ = settings_.penalty_factor * beta_prime_ * m_ref;
     scene_->add_constraint_gram(ws_, alpha_, iteration_);
-    llt_.compute(iteration_);
+    chol_.compute(iteration_);
     have_factorization_ = true;
     ++stats_.factorizations;
     ++stats_.last_factorizations;
@@ -427,7 +430,7 @@ class ImplicitIntegrator {
     const Scalar m_ref = max_abs(iteration_.diagonal());
     alpha_ = settings_.penalty_factor * m_ref;
     scene_->add_constraint_gram(ws_, alpha_, iteration_);
-    llt_.compute(iteration_);
+    chol_.compute(iteration_);
     have_factorization_ = false;  // the step needs its own matrix
   }
 
@@ -438,7 +441,7 @@ class ImplicitIntegrator {
       e_ += ws_.phi_t;
       if (max_abs(e_) <= settings_.position_floor * (Scalar(1) + max_abs(s.v))) break;
       tmp_.noalias() = alpha_ * ws_.jac.transpose() * e_;
-      llt_.solveInPlace(tmp_);
+      chol_.solve_in_place(tmp_);
       s.v -= tmp_;
     }
   }
@@ -450,7 +453,7 @@ class ImplicitIntegrator {
       e_ += ws_.conv;
       if (max_abs(e_) <= settings_.position_floor * (Scalar(1) + max_abs(s.v_dot))) break;
       tmp_.noalias() = alpha_ * ws_.jac.transpose() * e_;
-      llt_.solveInPlace(tmp_);
+      chol_.solve_in_place(tmp_);
       s.v_dot -= tmp_;
     }
   }
@@ -470,7 +473,7 @@ class ImplicitIntegrator {
   bool have_factorization_ = false;
   Workspace ws_;
   MatVV iteration_;
-  Eigen::LLT<MatVV> llt_;
+  EnvelopeCholesky<Scalar, SceneT::NV> chol_;  ///< of iteration_
   VecV r_, dx_, v_n_, vd_n_, a_n_, a1_, tmp_, vd_prev_, v_save_, vd_save_;
   VecC lambda_save_;
   decltype(State::q) q_save_;

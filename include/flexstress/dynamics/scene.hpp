@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include "flexstress/core/envelope_cholesky.hpp"
 #include "flexstress/core/euler_parameters.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
@@ -466,6 +467,18 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
           }
         },
         std::make_index_sequence<num_joints>{});
+  }
+
+  /// Where the iteration matrix M b' + ... + alpha B^T B can be nonzero: one dense block per
+  /// body, coupled where a joint joins two bodies (setup: allocates).
+  static BlockPattern block_pattern() {
+    BlockPattern pattern;
+    pattern.block_sizes.assign(body_nv.begin(), body_nv.end());
+    const auto couple = [&](int i, int j) {
+      if (i >= 0 && j >= 0) pattern.couplings.emplace_back(i, j);  // ground joints: diagonal
+    };
+    (couple(J::body_i, J::body_j), ...);
+    return pattern;
   }
 
   /// Adds the modal stiffness and damping (the derivatives of the elastic forces) to the

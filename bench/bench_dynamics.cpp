@@ -7,9 +7,7 @@
 //   hinged_effects<E>       the same with N = 10 and only the effects E (spinning at 2 rad/s so
 //                           every variant moves): the cost of each effect
 //   hinged_rk4<N>           explicit RK4 at its stable step (h w_max = 2), 1e5 steps
-//   crane_cycle<L, E>       the crane (examples/crane: 10 boom modes, 5 joints, 18 equations)
-//                           over its 11 s synthetic work cycle, h = 1 ms, Newton tolerance
-//                           10^-E m/s^2 (E = 5 by default); also reports factorizations/step
+// The crane's rows are in bench_crane.cpp.
 //
 // Every template argument list instantiates a scene and its integrator (about a minute of
 // compile time each), so the sweep is sparse and CI does not build this program
@@ -29,13 +27,12 @@
 #include <flexstress/fe/beam_line.hpp>
 #include <flexstress/reduction/modal_body_data.hpp>
 
-#include "../examples/crane/crane_model.hpp"
+#include "step_timing.hpp"
 
 using namespace flexstress;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr int kSteps = 100000;
 
 // The hinged beam's modal data with n fixed-interface modes (hinge node as the interface).
@@ -80,33 +77,6 @@ std::optional<SceneT> make_hinged(const HingedBeam& beam) {
   return scene;
 }
 
-// Times `steps` calls of step(s) one by one; reports median, worst and mean (us).
-template <class Integrator, class StateT>
-void time_steps(benchmark::State& bench, Integrator& integ, StateT& s, int steps) {
-  std::vector<double> us;
-  us.reserve(static_cast<std::size_t>(steps));
-  for (auto _ : bench) {
-    for (int i = 0; i < steps; ++i) {
-      const auto a = Clock::now();
-      const StepStatus st = integ.step(s);
-      const auto b = Clock::now();
-      if (st != StepStatus::ok) {
-        bench.SkipWithError(to_string(st));
-        return;
-      }
-      us.push_back(std::chrono::duration<double, std::micro>(b - a).count());
-    }
-  }
-  double mean = 0;
-  for (double u : us) mean += u;
-  mean /= static_cast<double>(us.size());
-  const auto mid = us.begin() + static_cast<std::ptrdiff_t>(us.size() / 2);
-  std::nth_element(us.begin(), mid, us.end());
-  bench.counters["median_us"] = *mid;
-  bench.counters["worst_us"] = *std::max_element(us.begin(), us.end());
-  bench.counters["mean_us"] = mean;
-}
-
 template <int N, int L>
 void hinged_implicit(benchmark::State& bench) {
   using S = Hinged<N, Effects<Gravity, QuadraticVelocity, ModalDamping>, L>;
@@ -116,7 +86,7 @@ void hinged_implicit(benchmark::State& bench) {
   ImplicitIntegrator<S> integ(*scene);
   typename S::State s;
   if (!integ.initialize(s)) return bench.SkipWithError("initialize failed");
-  time_steps(bench, integ, s, kSteps);
+  bench_support::time_steps(bench, integ, s, kSteps);
   bench.counters["newton_its"] = static_cast<double>(integ.statistics().iterations) /
                                  static_cast<double>(integ.statistics().steps);
   bench.counters["nv"] = S::nv;
@@ -132,7 +102,7 @@ void hinged_effects(benchmark::State& bench) {
   typename S::State s;
   s.v(5) = 2.0;
   if (!integ.initialize(s)) return bench.SkipWithError("initialize failed");
-  time_steps(bench, integ, s, kSteps);
+  bench_support::time_steps(bench, integ, s, kSteps);
   bench.counters["newton_its"] = static_cast<double>(integ.statistics().iterations) /
                                  static_cast<double>(integ.statistics().steps);
 }
@@ -147,28 +117,8 @@ void hinged_rk4(benchmark::State& bench) {
   es.step = 2.0 / scene->max_modal_frequency();
   ExplicitIntegrator<S> integ(*scene, es);
   typename S::State s;
-  time_steps(bench, integ, s, kSteps);
+  bench_support::time_steps(bench, integ, s, kSteps);
   bench.counters["h_us"] = es.step * 1e6;
-}
-
-// ToleranceExponent E: Newton tolerance 10^-E m/s^2 (5: the default; 3: the accuracy study's
-// pick, which gives the same stress history, docs/accuracy-vs-time.md).
-template <int L, int ToleranceExponent = 5>
-void crane_cycle(benchmark::State& bench) {
-  std::vector<double> t, ds;
-  crane::synthetic_cycle(t, ds);
-  auto made = crane::make_crane<10, L>(crane::CraneSpec{}, t, ds);
-  if (!made) return bench.SkipWithError(made.error().what().c_str());
-  using S = crane::CraneScene<10, L>;
-  typename ImplicitIntegrator<S>::Settings settings;
-  settings.acceleration_tolerance = std::pow(10.0, -ToleranceExponent);
-  ImplicitIntegrator<S> integ(made->scene, settings);
-  auto s = made->initial;
-  if (!integ.initialize(s)) return bench.SkipWithError("initialize failed");
-  time_steps(bench, integ, s, 11000);
-  const auto steps = static_cast<double>(integ.statistics().steps);
-  bench.counters["newton_its"] = static_cast<double>(integ.statistics().iterations) / steps;
-  bench.counters["factorizations"] = static_cast<double>(integ.statistics().factorizations) / steps;
 }
 
 }  // namespace
@@ -190,8 +140,5 @@ FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_effects,
                                    Effects<Gravity, QuadraticVelocity, ModalDamping>));
 FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_rk4, 4));
 FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_rk4, 10));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(crane_cycle, 64));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(crane_cycle, 0));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(crane_cycle, 64, 3));
 
 BENCHMARK_MAIN();

@@ -51,6 +51,28 @@ TEST_CASE("without analyze() the factorization is dense and still exact") {
   CHECK((a * x - Eigen::VectorXd::Ones(12)).norm() <= 1e-12 * a.norm() * x.norm());
 }
 
+TEST_CASE("odd sizes, single-row blocks and blocks no other touches") {
+  // The solves take the columns in pairs, reading L(k + 1, k) even where the envelope holds
+  // a stored zero: odd sizes leave a last single column, an uncoupled block has columns whose
+  // envelope ends at the diagonal, and a one-row block starts a pair in the middle of another.
+  const BlockPattern patterns[] = {{{3, 1, 5}, {{0, 2}}},
+                                   {{1, 1, 1, 1, 1}, {{0, 4}, {1, 3}}},
+                                   {{7}, {}},
+                                   {{2, 4, 1, 3, 5}, {{0, 3}, {3, 4}, {1, 2}}}};
+  unsigned seed = 20;
+  for (const BlockPattern& pattern : patterns) {
+    EnvelopeCholesky<double, Eigen::Dynamic> chol;
+    REQUIRE(chol.analyze(pattern));
+    const Eigen::MatrixXd a = random_block_spd(pattern, ++seed);
+    REQUIRE(chol.compute(a));
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(a.rows(), 1.0, -2.0);
+    Eigen::VectorXd x = b;
+    chol.solve_in_place(x);
+    const Eigen::VectorXd reference = a.llt().solve(b);
+    CHECK((x - reference).norm() <= 1e-12 * reference.norm());
+  }
+}
+
 TEST_CASE("a chain of 40 blocks factorizes in its band, in either numbering") {
   // Blocks numbered along the chain, and the same chain numbered from both ends inwards (0, 39,
   // 1, 38, ...), which a dense order would fill: the analysis must recover a banded order.

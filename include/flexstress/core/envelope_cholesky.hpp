@@ -156,18 +156,38 @@ class EnvelopeCholesky {
     } else {
       for (int i = 0; i < n; ++i) y[i] = x(perm_(i));
     }
-    for (int k = 0; k < n; ++k) {  // L z = y, by columns
-      const Scalar* ck = &l_(0, k);
-      const Scalar yk = y[k] * inverse_diagonal_(k);
-      y[k] = yk;
-      subtract_scaled(y + k + 1, ck + k + 1, yk, last_(k) - k);
+    // Two columns at a time: each unknown waits for the one before it (a multiply and a
+    // subtraction), and pairing them halves the number of dependent passes over the vector.
+    // Entries outside the envelope are stored zeros, so L(k+1, k) may be read unconditionally.
+    const Scalar* d = inverse_diagonal_.data();
+    int k = 0;
+    for (; k + 1 < n; k += 2) {  // L z = y, by columns
+      const Scalar* c0 = &l_(0, k);
+      const Scalar* c1 = &l_(0, k + 1);
+      const Scalar y0 = y[k] * d[k];
+      const Scalar y1 = (y[k + 1] - y0 * c0[k + 1]) * d[k + 1];
+      y[k] = y0;
+      y[k + 1] = y1;
+      const int split = std::max(last_(k), k + 1);  // rows after it: column k + 1 only
+      subtract_scaled(y + k + 2, c0 + k + 2, y0, c1 + k + 2, y1, split - k - 1);
+      subtract_scaled(y + split + 1, c1 + split + 1, y1, last_(k + 1) - split);
     }
-    for (int k = n - 1; k >= 0; --k) {  // L^T w = z, by columns of L^T (rows of L)
-      const Scalar* uk = &u_(0, k);
-      const Scalar yk = y[k] * inverse_diagonal_(k);
-      y[k] = yk;
-      subtract_scaled(y + first_(k), uk + first_(k), yk, k - first_(k));
+    if (k < n) {
+      y[k] *= d[k];
+      subtract_scaled(y + k + 1, &l_(0, k) + k + 1, y[k], last_(k) - k);
     }
+    for (k = n - 1; k > 0; k -= 2) {  // L^T w = z, by columns of L^T (rows of L)
+      const Scalar* u0 = &u_(0, k);
+      const Scalar* u1 = &u_(0, k - 1);
+      const Scalar y0 = y[k] * d[k];
+      const Scalar y1 = (y[k - 1] - y0 * u0[k - 1]) * d[k - 1];
+      y[k] = y0;
+      y[k - 1] = y1;
+      const int split = std::min(first_(k), k - 1);  // rows before it: column k - 1 only
+      subtract_scaled(y + split, u0 + split, y0, u1 + split, y1, k - 1 - split);
+      subtract_scaled(y + first_(k - 1), u1 + first_(k - 1), y1, split - first_(k - 1));
+    }
+    if (k == 0) y[0] *= d[0];
     if (identity_) {
       for (int i = 0; i < n; ++i) x(i) = y[i];
     } else {
@@ -196,6 +216,11 @@ class EnvelopeCholesky {
   /// costs more than these short loops.
   static void subtract_scaled(Scalar* __restrict y, const Scalar* __restrict x, Scalar f, int n) {
     for (int i = 0; i < n; ++i) y[i] -= f * x[i];
+  }
+  /// y[0..n) -= f0 x0[0..n) + f1 x1[0..n).
+  static void subtract_scaled(Scalar* __restrict y, const Scalar* __restrict x0, Scalar f0,
+                              const Scalar* __restrict x1, Scalar f1, int n) {
+    for (int i = 0; i < n; ++i) y[i] -= f0 * x0[i] + f1 * x1[i];
   }
 
   void resize(int n) {

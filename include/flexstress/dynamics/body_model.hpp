@@ -218,7 +218,7 @@ class BodyModel {
       t.j = lambda00_.trace() * Mat3<Scalar>::Identity() - lambda00_;
     } else {
       t.s = s0_ + s_phi_ * k.p;
-      const Vec<Scalar, 9 * NModes> wv = w_map_ * k.p;
+      const Vec<Scalar, 9 * NModes> wv = w_map_.lazyProduct(k.p);
       Mat3<Scalar> u = lambda00_;
       for (int m = 0; m < NModes; ++m) {
         const Eigen::Map<const Mat3<Scalar>> dw(wv.data() + 9 * m);
@@ -261,7 +261,7 @@ class BodyModel {
       qw += Scalar(2) * (w * v.trace() - v.transpose() * w);
       const Scalar w2 = w.squaredNorm();
       MatN g = w(0) * gyro_[0] + w(1) * gyro_[1] + w(2) * gyro_[2];
-      VecN qp = Scalar(2) * g * k.p_dot;
+      VecN qp = Scalar(2) * g.lazyProduct(k.p_dot);
       for (int m = 0; m < NModes; ++m) {
         const auto wm = t.w.template block<3, 3>(0, 3 * m);
         qp(m) += w.dot(wm * w) - w2 * wm.trace();

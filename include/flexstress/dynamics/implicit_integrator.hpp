@@ -275,7 +275,13 @@ class ImplicitIntegrator {
       // Residual M v_dot - Q + B^T (lambda* + alpha Phi).
       e_ = lambda_star_ + alpha_ * ws_.phi;
       r_.noalias() = -ws_.force;
-      r_.noalias() += ws_.jac.transpose() * e_;
+      // Coefficient-based for fixed-size scenes, where calling the general matrix-vector
+      // kernel costs more than the product; the kernel for large dynamic ones (the 40-bar
+      // chain: 12 % slower steps without it).
+      if constexpr (SceneT::fixed_storage)
+        r_.noalias() += ws_.jac.transpose().lazyProduct(e_);
+      else
+        r_.noalias() += ws_.jac.transpose() * e_;
       scene_->add_mass_times(ws_, s.v_dot, r_);
       const Scalar residual = r_.norm();
       // A correction made with a reused matrix that increased the residual is undone and

@@ -114,7 +114,8 @@ class EnvelopeCholesky {
 
   /// Factorizes a (symmetric: both triangles hold the matrix; entries outside the analyzed
   /// pattern must be zero). Returns false if a is not numerically positive definite; solves
-  /// then give NaN, so a caller's finiteness check catches it. Never allocates.
+  /// then give NaN, so a caller's finiteness check catches it. Never allocates once analyze()
+  /// has run (without it, the first call sizes a dynamic factor for a dense pattern).
   bool compute(const Matrix& a) {
     if (!analyzed_ || size() != a.rows()) resize_dense(static_cast<int>(a.rows()));
     const int n = size();

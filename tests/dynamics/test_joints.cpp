@@ -1,9 +1,12 @@
 // Joint and driver equations: analytic constraint Jacobians B and convective terms checked
 // against finite differences of the constraint functions along a motion q(t) = q0 o exp(t v)
 // (constant velocities, so d2 Phi / dt2 = conv exactly), on a flexible and a rigid body; and an
-// evaluation without rates (what Newton iterations use) gives the same Phi and B.
+// evaluation without rates (what Newton iterations use) gives the same Phi and B. A joint
+// evaluates only the marker parts it declares (parts_i, parts_j) and the others are NaN, so a
+// part read but not declared fails here too.
 #include <cmath>
 #include <random>
+#include <string>
 
 #include <doctest/doctest.h>
 
@@ -113,7 +116,8 @@ TEST_CASE("constraint Jacobians and convective terms of every joint match finite
     const AllJoints::VecC acc_fd = (phi_at(e2) - 2 * phi_at(0) + phi_at(-e2)) / (e2 * e2);
     for (int r = 0; r < AllJoints::nc; ++r) {
       CAPTURE(r);
-      CAPTURE(AllJoints::joint_kind_name(AllJoints::joint_of_row(r)));
+      const std::string kind = AllJoints::joint_kind_name(AllJoints::joint_of_row(r));
+      CAPTURE(kind);
       CHECK(rate(r) == doctest::Approx(rate_fd(r)).epsilon(1e-7).scale(1.0));
       CHECK(w.conv(r) == doctest::Approx(acc_fd(r)).epsilon(1e-5).scale(1.0));
     }

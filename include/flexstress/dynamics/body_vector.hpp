@@ -52,32 +52,57 @@ struct BodyVector {
   }
   /// Global value x = [R] + A u.
   Vec3<Scalar> global(const BodyKinematics<Scalar, NModes>& k) const {
-    const Vec3<Scalar> g = k.rotation * local(k);
-    return is_point ? Vec3<Scalar>(k.position + g) : g;
+    return global_from_local(k, local(k));
   }
   /// Global time derivative J v.
   Vec3<Scalar> velocity(const BodyKinematics<Scalar, NModes>& k) const {
-    Vec3<Scalar> body = k.omega.cross(local(k));
-    if constexpr (NModes > 0) body += psi * k.p_dot;
-    const Vec3<Scalar> g = k.rotation * body;
-    return is_point ? Vec3<Scalar>(k.velocity + g) : g;
+    Vec3<Scalar> v, c;
+    rates_from_local(k, local(k), v, c);
+    return v;
   }
   /// Convective acceleration A (w x (w x u) + 2 w x Psi p_dot): x_ddot = J v_dot + this.
   Vec3<Scalar> convective(const BodyKinematics<Scalar, NModes>& k) const {
-    const Vec3<Scalar> u = local(k);
-    Vec3<Scalar> body = k.omega.cross(k.omega.cross(u));
-    if constexpr (NModes > 0) body += Scalar(2) * k.omega.cross(Vec3<Scalar>(psi * k.p_dot));
-    return k.rotation * body;
+    Vec3<Scalar> v, c;
+    rates_from_local(k, local(k), v, c);
+    return c;
   }
   /// Row vector b^T J (1 x nv) for a global vector b.
   RowV row(const BodyKinematics<Scalar, NModes>& k, const Vec3<Scalar>& b) const {
+    return row(k, local(k), b);
+  }
+
+  // The same with the body-frame value u = local(k) already known: a marker evaluates it once
+  // and every row and rate of the vector reuses it (with ten modes it is 30 of a row's 75
+  // multiply-adds).
+  Vec3<Scalar> global_from_local(const BodyKinematics<Scalar, NModes>& k,
+                                 const Vec3<Scalar>& u) const {
+    const Vec3<Scalar> g = k.rotation * u;
+    return is_point ? Vec3<Scalar>(k.position + g) : g;
+  }
+  /// Velocity and convective acceleration together: both need w x u and Psi p_dot.
+  void rates_from_local(const BodyKinematics<Scalar, NModes>& k, const Vec3<Scalar>& u,
+                        Vec3<Scalar>& velocity, Vec3<Scalar>& convective) const {
+    const Vec3<Scalar> w_u = k.omega.cross(u);
+    Vec3<Scalar> body_velocity = w_u;
+    Vec3<Scalar> body_convective = k.omega.cross(w_u);
+    if constexpr (NModes > 0) {
+      const Vec3<Scalar> u_dot = psi * k.p_dot;  // deformation rate
+      body_velocity += u_dot;
+      body_convective += Scalar(2) * k.omega.cross(u_dot);
+    }
+    velocity = k.rotation * body_velocity;
+    if (is_point) velocity += k.velocity;
+    convective = k.rotation * body_convective;
+  }
+  RowV row(const BodyKinematics<Scalar, NModes>& k, const Vec3<Scalar>& u,
+           const Vec3<Scalar>& b) const {
     RowV r;
     const Vec3<Scalar> bb = k.rotation.transpose() * b;
     if (is_point)
       r.template head<3>() = b.transpose();
     else
       r.template head<3>().setZero();
-    r.template segment<3>(3) = local(k).cross(bb).transpose();
+    r.template segment<3>(3) = u.cross(bb).transpose();
     if constexpr (NModes > 0) r.template tail<NModes>() = bb.transpose() * psi;
     return r;
   }

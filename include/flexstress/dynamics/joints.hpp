@@ -1,7 +1,8 @@
 // Joints and drivers between two bodies (compile-time body indices I and J; `ground` = -1),
 // each a fixed number of scalar equations built from constraint_primitives.hpp on the two
 // joint markers (marker i on body I, marker j on body J). Equation counts are compile-time
-// constants, so a scene knows its constraint count at compile time.
+// constants, so a scene knows its constraint count at compile time, and so are the parts of
+// each marker a joint reads (parts_i, parts_j: MarkerParts), so a scene evaluates only those.
 //
 //   Spherical    3  origins coincide
 //   Revolute     5  + z_i perpendicular to x_j and y_j (rotation about the common z axis)
@@ -30,6 +31,8 @@ struct NoParams {};
 template <int I, int J>
 struct Spherical {
   static constexpr int body_i = I, body_j = J, equations = 3;
+  static constexpr unsigned parts_i = MarkerParts::origin;
+  static constexpr unsigned parts_j = MarkerParts::origin;
   static constexpr const char* name = "spherical";
   template <class Scalar>
   using Params = NoParams<Scalar>;
@@ -43,6 +46,8 @@ struct Spherical {
 template <int I, int J>
 struct Revolute {
   static constexpr int body_i = I, body_j = J, equations = 5;
+  static constexpr unsigned parts_i = MarkerParts::origin | MarkerParts::z;
+  static constexpr unsigned parts_j = MarkerParts::origin | MarkerParts::x | MarkerParts::y;
   static constexpr const char* name = "revolute";
   template <class Scalar>
   using Params = NoParams<Scalar>;
@@ -58,6 +63,8 @@ struct Revolute {
 template <int I, int J>
 struct Universal {
   static constexpr int body_i = I, body_j = J, equations = 4;
+  static constexpr unsigned parts_i = MarkerParts::origin | MarkerParts::z;
+  static constexpr unsigned parts_j = MarkerParts::origin | MarkerParts::z;
   static constexpr const char* name = "universal";
   template <class Scalar>
   using Params = NoParams<Scalar>;
@@ -72,6 +79,8 @@ struct Universal {
 template <int I, int J>
 struct Cylindrical {
   static constexpr int body_i = I, body_j = J, equations = 4;
+  static constexpr unsigned parts_i = MarkerParts::all;
+  static constexpr unsigned parts_j = MarkerParts::origin | MarkerParts::x | MarkerParts::y;
   static constexpr const char* name = "cylindrical";
   template <class Scalar>
   using Params = NoParams<Scalar>;
@@ -88,6 +97,8 @@ struct Cylindrical {
 template <int I, int J>
 struct Prismatic {
   static constexpr int body_i = I, body_j = J, equations = 5;
+  static constexpr unsigned parts_i = MarkerParts::all;
+  static constexpr unsigned parts_j = MarkerParts::origin | MarkerParts::x | MarkerParts::y;
   static constexpr const char* name = "prismatic";
   template <class Scalar>
   using Params = NoParams<Scalar>;
@@ -105,6 +116,8 @@ struct Prismatic {
 template <int I, int J>
 struct Fixed {
   static constexpr int body_i = I, body_j = J, equations = 6;
+  static constexpr unsigned parts_i = MarkerParts::origin | MarkerParts::x | MarkerParts::z;
+  static constexpr unsigned parts_j = MarkerParts::origin | MarkerParts::x | MarkerParts::y;
   static constexpr const char* name = "fixed";
   template <class Scalar>
   using Params = NoParams<Scalar>;
@@ -121,6 +134,8 @@ struct Fixed {
 template <int I, int J>
 struct Distance {
   static constexpr int body_i = I, body_j = J, equations = 1;
+  static constexpr unsigned parts_i = MarkerParts::origin;
+  static constexpr unsigned parts_j = MarkerParts::origin;
   static constexpr const char* name = "distance";
   template <class Scalar>
   struct Params {
@@ -138,6 +153,8 @@ struct Distance {
 template <int I, int J, template <class> class Law>
 struct PrismaticDriver {
   static constexpr int body_i = I, body_j = J, equations = 1;
+  static constexpr unsigned parts_i = MarkerParts::origin | MarkerParts::z;
+  static constexpr unsigned parts_j = MarkerParts::origin;
   static constexpr const char* name = "prismatic driver";
   template <class Scalar>
   struct Params {
@@ -160,6 +177,8 @@ struct PrismaticDriver {
 template <int I, int J, template <class> class Law>
 struct RevoluteDriver {
   static constexpr int body_i = I, body_j = J, equations = 1;
+  static constexpr unsigned parts_i = MarkerParts::x | MarkerParts::y;
+  static constexpr unsigned parts_j = MarkerParts::x;
   static constexpr const char* name = "revolute driver";
   template <class Scalar>
   struct Params {

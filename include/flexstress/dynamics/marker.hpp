@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Core>
 
@@ -61,10 +62,18 @@ Mat3<Scalar> frame_with_z_axis(const Vec3<Scalar>& axis) {
   return f;
 }
 
-/// One evaluated body vector: global value, velocity and convective acceleration.
+/// The parts of a marker a joint reads (bit set). A joint evaluates only those: a spherical
+/// joint reads the two origins and none of the six axes, a revolute joint one axis of marker i
+/// and two of marker j.
+struct MarkerParts {
+  static constexpr unsigned origin = 1u, x = 2u, y = 4u, z = 8u, all = 15u;
+};
+
+/// One evaluated body vector: global value, velocity and convective acceleration, and the
+/// body-frame value u = c + Psi p that its Jacobian rows reuse.
 template <class Scalar>
 struct VectorEval {
-  Vec3<Scalar> value, velocity, convective;
+  Vec3<Scalar> value, velocity, convective, local;
 };
 
 /// A marker evaluated at a body state: what joints and force elements read.
@@ -77,33 +86,41 @@ struct MarkerEval {
 
   /// Evaluates the marker at k. With rates == false only the values are computed (velocities
   /// and convective terms are set to zero): a Newton iteration needs Phi and B, not Phi_t or
-  /// the convective terms, and skipping them saves two thirds of the work.
+  /// the convective terms, and skipping them saves two thirds of the work. Only the `parts`
+  /// named are evaluated (MarkerParts); the others are set to NaN, so a joint that reads a
+  /// part it did not declare produces NaN rows, which every Jacobian test catches.
   void evaluate(const Marker<Scalar, NModes>& m, const BodyKinematics<Scalar, NModes>& k,
-                bool rates = true) {
+                bool rates = true, unsigned parts = MarkerParts::all) {
     marker = &m;
     kin = &k;
-    eval(m.origin, origin, rates);
-    eval(m.x, x, rates);
-    eval(m.y, y, rates);
-    eval(m.z, z, rates);
+    eval(m.origin, origin, rates, parts & MarkerParts::origin);
+    eval(m.x, x, rates, parts & MarkerParts::x);
+    eval(m.y, y, rates, parts & MarkerParts::y);
+    eval(m.z, z, rates, parts & MarkerParts::z);
   }
   /// Row b^T J of the marker origin or of an axis (1 x nv).
   Eigen::Matrix<Scalar, 1, nv> row_origin(const Vec3<Scalar>& b) const {
-    return marker->origin.row(*kin, b);
+    return marker->origin.row(*kin, origin.local, b);
   }
-  Eigen::Matrix<Scalar, 1, nv> row_axis(int axis, const Vec3<Scalar>& b) const {
-    return (axis == 0 ? marker->x : axis == 1 ? marker->y : marker->z).row(*kin, b);
+  Eigen::Matrix<Scalar, 1, nv> row_axis(int a, const Vec3<Scalar>& b) const {
+    return (a == 0 ? marker->x : a == 1 ? marker->y : marker->z).row(*kin, axis(a).local, b);
   }
   const VectorEval<Scalar>& axis(int a) const { return a == 0 ? x : a == 1 ? y : z; }
   /// Jacobian of the origin (3 x nv).
   Eigen::Matrix<Scalar, 3, nv> jacobian_origin() const { return marker->origin.jacobian(*kin); }
 
  private:
-  void eval(const BodyVector<Scalar, NModes>& v, VectorEval<Scalar>& e, bool rates) const {
-    e.value = v.global(*kin);
+  void eval(const BodyVector<Scalar, NModes>& v, VectorEval<Scalar>& e, bool rates,
+            bool wanted) const {
+    if (!wanted) {
+      e.value.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+      e.local = e.velocity = e.convective = e.value;
+      return;
+    }
+    e.local = v.local(*kin);
+    e.value = v.global_from_local(*kin, e.local);
     if (rates) {
-      e.velocity = v.velocity(*kin);
-      e.convective = v.convective(*kin);
+      v.rates_from_local(*kin, e.local, e.velocity, e.convective);
     } else {
       e.velocity.setZero();
       e.convective.setZero();

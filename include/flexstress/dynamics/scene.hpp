@@ -68,6 +68,17 @@ struct modes_of<K, Tuple, true> {
   static constexpr int value = 0;
 };
 
+/// The marker parts a joint kind reads (MarkerParts): its parts_i and parts_j, or all of both
+/// for a kind that does not declare them.
+template <class Kind, class = void>
+struct joint_parts {
+  static constexpr unsigned i = MarkerParts::all, j = MarkerParts::all;
+};
+template <class Kind>
+struct joint_parts<Kind, std::void_t<decltype(Kind::parts_i), decltype(Kind::parts_j)>> {
+  static constexpr unsigned i = Kind::parts_i, j = Kind::parts_j;
+};
+
 template <class F, std::size_t... I>
 constexpr void for_each_index(F&& f, std::index_sequence<I...>) {
   (f(std::integral_constant<std::size_t, I>{}), ...);
@@ -364,9 +375,11 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
           }
           if constexpr (has_modes<K>) {
             auto fp = fb.template tail<modes_of<K>>();
-            fp.noalias() -= body.modal_stiffness() * kin.p;
+            // Coefficient-based products here and in add_mass_times: fixed and small, where
+            // the general matrix-vector kernel's call costs more than the product.
+            fp.noalias() -= body.modal_stiffness().lazyProduct(kin.p);
             if constexpr (Effects_::template has<ModalDamping>)
-              fp.noalias() -= body.modal_damping() * kin.p_dot;
+              fp.noalias() -= body.modal_damping().lazyProduct(kin.p_dot);
             if constexpr (Effects_::template has<GeometricStiffening>) {
               // The load factors of the current iterate: its accelerations (the integrators
               // keep s.v_dot at the iterate) and angular velocity.
@@ -376,7 +389,7 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
               if constexpr (Effects_::template has<Gravity>)
                 a_g.noalias() -= kin.rotation.transpose() * gravity;
               body.geometric_stiffness(a_g, vd.template segment<3>(3), kin.omega, kg);
-              fp.noalias() -= kg * kin.p;
+              fp.noalias() -= kg.lazyProduct(kin.p);
             }
           }
           f = fb;
@@ -427,7 +440,7 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
         [&](auto k) {
           constexpr int K = static_cast<int>(decltype(k)::value);
           y.template segment<body_nv[K]>(body_offset[K]).noalias() +=
-              std::get<K>(w.mass) * x.template segment<body_nv[K]>(body_offset[K]);
+              std::get<K>(w.mass).lazyProduct(x.template segment<body_nv[K]>(body_offset[K]));
         },
         std::make_index_sequence<num_bodies>{});
   }
@@ -456,13 +469,16 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
           constexpr int bi = Kind::body_i, bj = Kind::body_j, n = joint_nc[K], r = joint_offset[K];
           if (!joint_active_[static_cast<std::size_t>(K)]) return;  // zero rows
           if constexpr (n > 0) {
-            if constexpr (bi >= 0)
-              add_gram_block<bi, bi>(w.jac.template middleRows<n>(r), alpha, m);
-            if constexpr (bj >= 0)
-              add_gram_block<bj, bj>(w.jac.template middleRows<n>(r), alpha, m);
-            if constexpr (bi >= 0 && bj >= 0) {
-              add_gram_block<bi, bj>(w.jac.template middleRows<n>(r), alpha, m);
-              add_gram_block<bj, bi>(w.jac.template middleRows<n>(r), alpha, m);
+            const auto rows = w.jac.template middleRows<n>(r);
+            if constexpr (bi >= 0) {
+              const auto scaled_i = scaled_transpose<bi>(rows, alpha);
+              add_gram_block<bi, bi>(scaled_i, rows, m);
+              if constexpr (bj >= 0) add_gram_block<bi, bj>(scaled_i, rows, m);
+            }
+            if constexpr (bj >= 0) {
+              const auto scaled_j = scaled_transpose<bj>(rows, alpha);
+              add_gram_block<bj, bj>(scaled_j, rows, m);
+              if constexpr (bi >= 0) add_gram_block<bj, bi>(scaled_j, rows, m);
             }
           }
         },
@@ -679,8 +695,8 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
     const auto& inst = std::get<static_cast<std::size_t>(K)>(joints);
     MarkerEval<Scalar, modes_of<bi>> mi;
     MarkerEval<Scalar, modes_of<bj>> mj;
-    mi.evaluate(inst.marker_i, kinematics<bi>(w), rates);
-    mj.evaluate(inst.marker_j, kinematics<bj>(w), rates);
+    mi.evaluate(inst.marker_i, kinematics<bi>(w), rates, detail::joint_parts<Kind>::i);
+    mj.evaluate(inst.marker_j, kinematics<bj>(w), rates, detail::joint_parts<Kind>::j);
     Kind::evaluate(inst.params, mi, mj, t, [&](int r, const auto& row) {
       const int i = row0 + r;
       w.phi(i) = row.phi;
@@ -710,15 +726,21 @@ class Scene<Scalar, Bodies<B...>, Joints<J...>, Effects<E...>, ForceElements<F..
   std::array<bool, num_joints> joint_active_ = all_joints_active();
   std::uint64_t revision_ = 0;
 
-  template <int BI, int BJ, class Rows, class M>
-  static void add_gram_block(const Rows& rows, Scalar alpha, M& m) {
-    constexpr int ni = body_nv[BI], nj = body_nv[BJ];
-    // Coefficient-based product: these blocks are small and fixed-size, and the general
-    // matrix-matrix kernel spends longer packing them than multiplying.
-    m.template block<ni, nj>(body_offset[BI], body_offset[BJ]).noalias() +=
-        alpha * rows.template middleCols<ni>(body_offset[BI])
-                    .transpose()
-                    .lazyProduct(rows.template middleCols<nj>(body_offset[BJ]));
+  /// alpha times the transpose of a joint's rows restricted to body K's columns, copied so
+  /// that the gram products below read it by contiguous columns (and vectorize).
+  template <int K, class Rows>
+  static Mat<Scalar, body_nv[K], Rows::RowsAtCompileTime> scaled_transpose(const Rows& rows,
+                                                                           Scalar alpha) {
+    return alpha * rows.template middleCols<body_nv[K]>(body_offset[K]).transpose();
+  }
+
+  /// Block (BI, BJ) += alpha B_I^T B_J, with scaled_i = alpha B_I^T. Coefficient-based product:
+  /// these blocks are small and fixed-size, and the general matrix-matrix kernel spends longer
+  /// packing them than multiplying.
+  template <int BI, int BJ, class Scaled, class Rows, class M>
+  static void add_gram_block(const Scaled& scaled_i, const Rows& rows, M& m) {
+    m.template block<body_nv[BI], body_nv[BJ]>(body_offset[BI], body_offset[BJ]).noalias() +=
+        scaled_i.lazyProduct(rows.template middleCols<body_nv[BJ]>(body_offset[BJ]));
   }
 
   static Vec6<Scalar> ground_velocity(const Workspace& w) {

@@ -35,6 +35,7 @@ void crane_cycle(benchmark::State& bench) {
   using S = crane::CraneScene<10, L>;
   typename ImplicitIntegrator<S>::Settings settings;
   settings.acceleration_tolerance = std::pow(10.0, -ToleranceExponent);
+  settings.refresh_workspace = false;  // as examples/crane: no reader of the workspace
   ImplicitIntegrator<S> integ(made->scene, settings);
   auto s = made->initial;
   if (!integ.initialize(s)) return bench.SkipWithError("initialize failed");

@@ -55,6 +55,7 @@ int run_game_loop(const RunOptions& o, double render_hz, bool realtime) {
   typename ImplicitIntegrator<Scene>::Settings settings;
   settings.step = o.step;
   settings.acceleration_tolerance = o.tolerance;
+  settings.refresh_workspace = false;  // nothing here reads the workspace after a step
   ImplicitIntegrator<Scene> integ(cr.scene, settings);
   if (Status st = integ.initialize(s); !st) {
     std::fprintf(stderr, "error: %s\n", st.error().what().c_str());

@@ -122,9 +122,8 @@ using CraneLoop = Scene<double, Bodies<RigidBody, RigidBody, RigidBody>,
                         Effects<Gravity, QuadraticVelocity>>;
 
 template <class SceneT>
-std::vector<double> run_crane_loop() {
+void build_crane_loop(SceneT& scene, typename SceneT::State& s) {
   const Vector3d a(0, 0, 0), b(0.32, -0.125, 0), c(0, -0.925, 0);
-  SceneT scene;
   // Boom: 4.5 m, 67 kg, plus 100 kg at 2.5 m: centre of mass and inertia about it.
   const double mb = 67.0, mp = 100.0, l = 4.5;
   const double m = mb + mp;
@@ -139,7 +138,6 @@ std::vector<double> run_crane_loop() {
       RigidBody::rigid(20.0, Vector3d(0, 0, 0.3), Vector3d(2.0, 2.0, 0.02).asDiagonal());
   scene.template body<2>() =
       RigidBody::rigid(10.0, Vector3d(0, 0, -0.3), Vector3d(1.0, 1.0, 0.01).asDiagonal());
-  typename SceneT::State s;
   // Cylinder and rod frames: z along C -> B, origin at C (cylinder) and at B (rod).
   s.template coordinates<1>().position = c;
   s.template coordinates<1>().theta = from_rotation_matrix<double>(frame);
@@ -167,6 +165,13 @@ std::vector<double> run_crane_loop() {
   scene.template joint<4>().marker_j = make_marker(scene.template body<2>(), -1, Vector3d::Zero());
   // Stroke from the initial length, extending at 0.05 m/s with 0.1 m/s^2.
   scene.template joint<4>().params.law = Stroke<double>{(b - c).norm(), 0.05, 0.1};
+}
+
+template <class SceneT>
+std::vector<double> run_crane_loop() {
+  SceneT scene;
+  typename SceneT::State s;
+  build_crane_loop(scene, s);
   typename ImplicitIntegrator<SceneT>::Settings set;
   set.step = 1e-3;
   ImplicitIntegrator<SceneT> integ(scene, set);
@@ -197,6 +202,38 @@ TEST_CASE("a planar loop with redundant revolutes moves like the same loop made 
   MESSAGE("boom angle travel " << range << " rad, largest difference " << diff << " rad");
   CHECK(range > 0.05);
   CHECK(diff < 1e-8 * (1 + range));
+}
+
+TEST_CASE(
+    "a step without the workspace refresh moves the same; with it, the workspace is current") {
+  using Loop = CraneLoop<Spherical, Universal>;
+  Loop scene;
+  Loop::State refreshed;
+  build_crane_loop(scene, refreshed);
+  ImplicitIntegrator<Loop>::Settings set;
+  ImplicitIntegrator<Loop> with(scene, set);
+  set.refresh_workspace = false;
+  ImplicitIntegrator<Loop> without(scene, set);
+  REQUIRE(with.initialize(refreshed).ok());
+  Loop::State skipped = refreshed;
+  REQUIRE(without.initialize(skipped).ok());
+  Loop::Workspace fresh;
+  for (int i = 0; i < 300; ++i) {
+    REQUIRE(with.step(refreshed) == StepStatus::ok);
+    REQUIRE(without.step(skipped) == StepStatus::ok);
+    // The refresh only re-evaluates: the next step's first iteration evaluates anyway.
+    CHECK(skipped.v == refreshed.v);
+    CHECK(skipped.v_dot == refreshed.v_dot);
+    CHECK(skipped.lambda == refreshed.lambda);
+    CHECK(skipped.coordinates<0>().theta == refreshed.coordinates<0>().theta);
+    CHECK(skipped.coordinates<2>().position == refreshed.coordinates<2>().position);
+    scene.update_kinematics(refreshed, fresh);
+    scene.update_constraints(refreshed, fresh);
+    CHECK(with.workspace().phi == fresh.phi);
+    CHECK(with.workspace().jac == fresh.jac);
+    CHECK(with.workspace().phi_t == fresh.phi_t);
+    CHECK(with.workspace().conv == fresh.conv);
+  }
 }
 
 }  // namespace test_mechanisms

@@ -1,0 +1,17 @@
+// A bench_crane row: the crane with no effect at all. The stroke drives a weightless,
+// undamped boom without the quadratic velocity terms: the bare cost of joints, inertia and
+// elastic forces.
+// One scene type per unit (crane_cycle.hpp says why); compare with crane_cycle<64>, the
+// crane's own effect list (gravity, quadratic velocity terms, modal damping).
+#include "../crane_cycle.hpp"
+
+namespace {
+
+void crane_effects_none(benchmark::State& bench) {
+  using namespace flexstress;
+  bench_support::crane_cycle<64, 5, Effects<>>(bench);
+}
+
+}  // namespace
+
+FLEXSTRESS_CRANE_ONCE(BENCHMARK(crane_effects_none));

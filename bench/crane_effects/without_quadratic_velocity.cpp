@@ -1,0 +1,15 @@
+// A bench_crane row: the crane without the quadratic velocity terms.
+// One scene type per unit (crane_cycle.hpp says why); compare with crane_cycle<64>, the
+// crane's own effect list (gravity, quadratic velocity terms, modal damping).
+#include "../crane_cycle.hpp"
+
+namespace {
+
+void crane_effects_without_quadratic_velocity(benchmark::State& bench) {
+  using namespace flexstress;
+  bench_support::crane_cycle<64, 5, Effects<Gravity, ModalDamping>>(bench);
+}
+
+}  // namespace
+
+FLEXSTRESS_CRANE_ONCE(BENCHMARK(crane_effects_without_quadratic_velocity));

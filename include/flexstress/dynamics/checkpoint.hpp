@@ -6,7 +6,7 @@
 // between steps: its checkpoint is the step size and the State ("FLXCKRK4", same envelope, the
 // payload without the history part).
 //
-// Format, version 1 (host byte order, which must be little-endian; checked):
+// Format, version 2 (host byte order, which must be little-endian; checked):
 //   "FLXCKPT1"  8-byte magic
 //   u32 version, u32 byte-order mark 0x01020304
 //   u64 scene signature (a hash of the scene's sizes: Scalar, coordinates, equations, bodies
@@ -15,6 +15,8 @@
 //   payload: Scalar h; Scalar t; per body position (3), Euler parameters (4), modal coordinates;
 //            v, v_dot, a (nv each), lambda (nc); each force element's state (raw bytes);
 //            u8 has_previous, u8 have_factorization; Scalar alpha; vd_prev (nv);
+//            lambda_prev (nc), u8 converged_multipliers (version 2: the predictor
+//            extrapolates the multipliers too);
 //            the iteration matrix (nv x nv, column-major) if factorized; statistics (6 x i64).
 // The loader checks magic, version, byte order, scene, size and checksum before it touches the
 // state, and names what is wrong; a corrupted or foreign checkpoint is an error, never a crash.
@@ -38,7 +40,7 @@ namespace flexstress {
 
 namespace checkpoint_detail {
 
-inline constexpr binary::Envelope kEnvelope{"FLXCKPT1", 1, "checkpoint"};
+inline constexpr binary::Envelope kEnvelope{"FLXCKPT1", 2, "checkpoint"};
 inline constexpr binary::Envelope kExplicitEnvelope{"FLXCKRK4", 1,
                                                     "explicit-integrator checkpoint"};
 
@@ -186,6 +188,8 @@ Result<std::vector<unsigned char>> save_checkpoint(const typename SceneT::State&
   w.put(static_cast<std::uint8_t>(h.have_factorization));
   w.put(h.alpha);
   put_scalars(w, h.vd_prev.data(), SceneT::nv);
+  put_scalars(w, h.lambda_prev.data(), SceneT::nc);
+  w.put(static_cast<std::uint8_t>(h.converged_multipliers));
   if (h.have_factorization)
     put_scalars(w, h.iteration.data(), Index(SceneT::nv) * Index(SceneT::nv));
   const auto& st = h.statistics;
@@ -222,9 +226,11 @@ Status restore_checkpoint(const unsigned char* data, std::size_t size, typename 
   integrator.save_history(h);  // sized like the integrator's
   Scalar step = Scalar(0);
   bool ok = r.get(step) && checkpoint_detail::get_state<SceneT>(r, next);
-  std::uint8_t has_previous = 0, have_factorization = 0;
+  std::uint8_t has_previous = 0, have_factorization = 0, converged_multipliers = 0;
   ok = ok && r.get(has_previous) && r.get(have_factorization) && r.get(h.alpha) &&
-       get_scalars(r, h.vd_prev.data(), SceneT::nv);
+       get_scalars(r, h.vd_prev.data(), SceneT::nv) &&
+       get_scalars(r, h.lambda_prev.data(), SceneT::nc) && r.get(converged_multipliers);
+  h.converged_multipliers = converged_multipliers > 2 ? 2 : converged_multipliers;
   h.has_previous = has_previous != 0;
   h.have_factorization = have_factorization != 0;
   if (ok && h.have_factorization) {

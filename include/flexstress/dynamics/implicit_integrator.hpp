@@ -123,8 +123,8 @@ class ImplicitIntegrator {
     /// Predict the multipliers the same way (else: start from the last step's). Held constant,
     /// their change over the step is left to the penalty updates lambda* += alpha Phi, and the
     /// second Newton correction is mostly that change: on the crane it kept the contraction
-    /// rate near refactor_rate, so that 0.75 steps in 1 refactorized (extrapolated: 0.45, and
-    /// 2.5 iterations per step instead of 2.9; docs/performance.md).
+    /// rate near refactor_rate, so that 0.75 steps in 1 refactorized (extrapolated: 0.44, and
+    /// 2.73 iterations per step instead of 3.19; docs/performance.md).
     bool extrapolate_multipliers = true;
     /// Real-time budget: a step that reaches max_iterations with a finite state keeps its last
     /// iterate instead of being undone (counted in Statistics::over_budget), so each step costs

@@ -75,8 +75,9 @@ TEST_CASE("a Newton budget keeps the step's last iterate instead of failing") {
   // Real-time use: at most max_iterations corrections per step. Without the budget flag a step
   // that needs more is undone and reported; with it the step is kept and counted, and with a
   // sufficient budget the motion stays close to the converged one (the pendulum's swing, 1 s
-  // from horizontal). A budget too small to converge may diverge: then a step reports it and
-  // the state stays finite (it must never abort or leave NaN behind).
+  // from horizontal). The pendulum converges in two iterations (its iteration matrix turns
+  // exactly with the body, Settings::corotate_factorization), so a budget of one binds at every
+  // step; the state stays finite (a budget must never abort or leave NaN behind).
   const Pendulum scene = make_pendulum();
   auto run = [&](int max_iterations, bool budget, long* over_budget, StepStatus* failure) {
     ImplicitIntegrator<Pendulum>::Settings settings;
@@ -106,19 +107,15 @@ TEST_CASE("a Newton budget keeps the step's last iterate instead of failing") {
   CHECK(refused.t < 0.5);
   CHECK(failure == StepStatus::newton_not_converged);
   long over = 0;
-  const auto kept = run(3, true, &over, nullptr);
+  const auto kept = run(1, true, &over, nullptr);
   CHECK(kept.t == doctest::Approx(1.0));
   CHECK(over > 0);
   const double dx = (kept.coordinates<0>().position - converged.coordinates<0>().position).norm();
-  MESSAGE("3-iteration budget: " << over << " steps at the limit, position off by " << dx
+  MESSAGE("1-iteration budget: " << over << " steps at the limit, position off by " << dx
                                  << " m after 1 s");
   CHECK(dx < 0.01);  // 1 % of the link length
-  for (int budget : {1, 2}) {
-    const auto s = run(budget, true, nullptr, nullptr);
-    CHECK(s.coordinates<0>().position.allFinite());
-    CHECK(s.coordinates<0>().theta.allFinite());
-    CHECK(s.v.allFinite());
-  }
+  CHECK(kept.coordinates<0>().theta.allFinite());
+  CHECK(kept.v.allFinite());
 }
 
 TEST_CASE("bad scene input: a non-finite state and a bad motion table get errors naming them") {

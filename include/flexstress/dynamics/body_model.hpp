@@ -18,6 +18,7 @@
 // vanish then, and the general expressions simply evaluate to zero there.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -109,6 +110,7 @@ class BodyModel {
     b.node_has_rotation_ = d.node_has_rotation;
     b.phi_r_ = d.phi_translation.leftCols(NModes).cast<Scalar>();
     b.phi_theta_ = d.phi_rotation.leftCols(NModes).cast<Scalar>();
+    b.update_displacement_scale();
     return b;
   }
 
@@ -128,6 +130,11 @@ class BodyModel {
   /// Highest angular frequency of the modes, sqrt of the largest eigenvalue of (K, M_ff) (0 for a
   /// rigid body).
   Scalar max_frequency() const { return max_frequency_; }
+  /// Largest nodal translation (m) per unit of each modal coordinate, at least the mode's
+  /// mass-weighted RMS translation: what turns a modal coordinate's Newton correction into
+  /// metres (the implicit integrator's tolerance). Modal units depend on how the modes are
+  /// normalized; metres do not.
+  const VecN& modal_displacement_scale() const { return displacement_scale_; }
   Index num_nodes() const { return static_cast<Index>(node_positions_.size()); }
   const Vec3<Scalar>& node_position(Index n) const {
     return node_positions_[static_cast<std::size_t>(n)];
@@ -323,6 +330,20 @@ class BodyModel {
   }
 
  private:
+  /// Modal displacement scale: the largest nodal translation of each mode, but at least its
+  /// mass-weighted RMS translation sqrt(M_ff,kk / m) (for a mode that moves no node, such as the
+  /// torsion of a beam about its axis, the first is zero).
+  void update_displacement_scale() {
+    for (int k = 0; k < NModes; ++k) {
+      Scalar largest = Scalar(0);
+      for (Index n = 0; n < phi_r_.rows() / 3; ++n)
+        largest = std::max(largest, phi_r_.template middleRows<3>(3 * n).col(k).norm());
+      if (mass_ > Scalar(0) && mass_ff_(k, k) > Scalar(0))
+        largest = std::max(largest, std::sqrt(mass_ff_(k, k) / mass_));
+      displacement_scale_(k) = largest > Scalar(0) ? largest : Scalar(1);
+    }
+  }
+
   /// D from the damping ratios in the modal basis of (K, M_ff): with K Z = M_ff Z W^2 and
   /// Z^T M_ff Z = 1, D = M_ff Z (2 zeta W) Z^T M_ff. Also records the highest frequency.
   void update_damping() {
@@ -345,6 +366,7 @@ class BodyModel {
   Mat<Scalar, 3, 3 * NModes> lambda0_ = Mat<Scalar, 3, 3 * NModes>::Zero();
   Mat<Scalar, 9 * NModes, NModes> w_map_ = Mat<Scalar, 9 * NModes, NModes>::Zero();
   MatN mass_ff_ = MatN::Zero();
+  VecN displacement_scale_ = VecN::Ones();
   std::array<MatN, 3> gyro_{MatN::Zero(), MatN::Zero(), MatN::Zero()};
   MatN stiffness_ = MatN::Zero();
   MatN damping_ = MatN::Zero();

@@ -6,7 +6,7 @@
 // between steps: its checkpoint is the step size and the State ("FLXCKRK4", same envelope, the
 // payload without the history part).
 //
-// Format, version 2 (host byte order, which must be little-endian; checked):
+// Format, version 3 (host byte order, which must be little-endian; checked):
 //   "FLXCKPT1"  8-byte magic
 //   u32 version, u32 byte-order mark 0x01020304
 //   u64 scene signature (a hash of the scene's sizes: Scalar, coordinates, equations, bodies
@@ -17,7 +17,9 @@
 //            u8 has_previous, u8 have_factorization; Scalar alpha; vd_prev (nv);
 //            lambda_prev (nc), u8 converged_multipliers (version 2: the predictor
 //            extrapolates the multipliers too);
-//            the iteration matrix (nv x nv, column-major) if factorized; statistics (6 x i64).
+//            the iteration matrix (nv x nv, column-major) if factorized, then each body's
+//            rotation matrix at that factorization (9 per body, column-major; version 3: the
+//            reused matrix is turned with the bodies); statistics (6 x i64).
 // The loader checks magic, version, byte order, scene, size and checksum before it touches the
 // state, and names what is wrong; a corrupted or foreign checkpoint is an error, never a crash.
 // Application data that lives outside the scene is the application's to save alongside: a
@@ -40,7 +42,7 @@ namespace flexstress {
 
 namespace checkpoint_detail {
 
-inline constexpr binary::Envelope kEnvelope{"FLXCKPT1", 2, "checkpoint"};
+inline constexpr binary::Envelope kEnvelope{"FLXCKPT1", 3, "checkpoint"};
 inline constexpr binary::Envelope kExplicitEnvelope{"FLXCKRK4", 1,
                                                     "explicit-integrator checkpoint"};
 
@@ -190,8 +192,10 @@ Result<std::vector<unsigned char>> save_checkpoint(const typename SceneT::State&
   put_scalars(w, h.vd_prev.data(), SceneT::nv);
   put_scalars(w, h.lambda_prev.data(), SceneT::nc);
   w.put(static_cast<std::uint8_t>(h.converged_multipliers));
-  if (h.have_factorization)
+  if (h.have_factorization) {
     put_scalars(w, h.iteration.data(), Index(SceneT::nv) * Index(SceneT::nv));
+    for (const auto& a : h.rotations) put_scalars(w, a.data(), 9);
+  }
   const auto& st = h.statistics;
   for (std::int64_t v : {std::int64_t(st.steps), std::int64_t(st.iterations),
                          std::int64_t(st.factorizations), std::int64_t(st.last_iterations),
@@ -236,6 +240,7 @@ Status restore_checkpoint(const unsigned char* data, std::size_t size, typename 
   if (ok && h.have_factorization) {
     h.iteration.resize(SceneT::nv, SceneT::nv);
     ok = get_scalars(r, h.iteration.data(), Index(SceneT::nv) * Index(SceneT::nv));
+    for (auto& a : h.rotations) ok = ok && get_scalars(r, a.data(), 9);
   }
   std::int64_t stats[6] = {};
   for (std::int64_t& v : stats) ok = ok && r.get(v);

@@ -121,10 +121,11 @@ class ImplicitIntegrator {
     /// R_dot components by A_now A_factorized^T (Q^T before, Q after), which is exact for those
     /// blocks and leaves the error of relative rotations in the blocks that couple two bodies.
     /// The penalty makes the rotation matter: alpha B^T B is about 1e3 times the mass matrix,
-    /// so a boom turning 0.5 mrad per step changes the crane's matrix by 20 % of M b' in a step.
-    /// Measured (docs/performance.md): the crane 0.37 -> 0.16 factorizations and 2.61 -> 2.46
-    /// iterations per step; the flexible beam released horizontal 0.99 -> 0.39 and 4.88 -> 3.81;
-    /// the rigid crane loop and the 40-bar chain unchanged. The motion is the same to the Newton
+    /// and on the crane one step changed its entries coupling the boom's R_dot and a mode by
+    /// 0.22 of M b'. Measured with this alone (docs/performance.md): the crane 0.37 -> 0.16
+    /// factorizations and 2.61 -> 2.47 iterations per step; the flexible beam released
+    /// horizontal 0.99 -> 0.39 and 4.88 -> 3.81; the rigid crane loop and the 40-bar chain
+    /// unchanged. The motion is the same to the Newton
     /// tolerance: only the matrix of the modified Newton changes, not the residual.
     bool corotate_factorization = true;
     /// Project velocities onto B v + Phi_t = 0 after each step. Index-3 integration keeps the

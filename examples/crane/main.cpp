@@ -26,7 +26,7 @@ const char* kUsage =
     "                   synthetic cycle of docs/crane.md\n"
     "  --step S         time step (default 0.001)\n"
     "  --tolerance T    Newton tolerance in m/s^2 (default 1e-5; 1e-3 gives the same\n"
-    "                   stress history in half the time, docs/accuracy-vs-time.md)\n"
+    "                   stress history in fewer iterations, docs/accuracy-vs-time.md)\n"
     "  --modes N        boom deformation modes: 10 (default, the paper's: 6 static + 4\n"
     "                   fixed-interface; 2.4 % off the converged hot-spot history; 16 are\n"
     "                   within 0.1 %, docs/accuracy-vs-time.md), or another count this\n"

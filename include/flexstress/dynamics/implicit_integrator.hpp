@@ -153,11 +153,9 @@ class ImplicitIntegrator {
     bool extrapolate_multipliers = true;
     /// Real-time budget: a step that reaches max_iterations with a finite state keeps its last
     /// iterate instead of being undone (counted in Statistics::over_budget), so each step costs
-    /// at most max_iterations corrections (plus one redone with a fresh matrix when a reused one
-    /// made the residual grow: the step never ends on an undone correction). The accuracy this
-    /// costs is measured in bench/accuracy_vs_time. It is also how a scene passes singular
-    /// configurations, where the multipliers are undefined and their update stalls
-    /// (docs/dynamics.md, IFToMM A02).
+    /// at most max_iterations corrections. The accuracy this costs is measured in
+    /// bench/accuracy_vs_time. It is also how a scene passes singular configurations, where
+    /// the multipliers are undefined and their update stalls (docs/dynamics.md, IFToMM A02).
     bool accept_at_iteration_limit = false;
   };
 
@@ -313,13 +311,12 @@ class ImplicitIntegrator {
     scene_->integrate(s, tmp_);
     s.t = t_n + h;
     int it = 0;
-    int redone = 0;               // an undone correction, redone with a fresh matrix (one per step)
     bool stale_for_next = false;  // refactorize at the next step (Settings::refactor_rate)
     bool converged = false, fresh = false, stale_step = false, restored = false;
     Scalar previous = std::numeric_limits<Scalar>::infinity();
     Scalar residual_prev = std::numeric_limits<Scalar>::infinity();
     stats_.last_factorizations = 0;
-    for (; it < settings_.max_iterations + redone; ++it) {
+    for (; it < settings_.max_iterations; ++it) {
       // "fresh": the matrix was factorized at this iterate. An older one (from an earlier
       // iteration of this step too) lacks the derivatives of the mass matrix, the quadratic
       // velocity terms and the penalty forces at the current iterate; with kHz modes excited
@@ -356,10 +353,6 @@ class ImplicitIntegrator {
         fresh = true;
         stale_step = false;
       } else if (stale_step && !(residual < residual_prev)) {
-        // The undone correction does not count against the iteration limit: at the limit, an
-        // undo would otherwise end the step at the iterate before it (under a budget of 2, the
-        // predictor itself; the crane diverged within 20 such steps).
-        if (redone == 0) redone = 1;
         s.q = q_save_;
         s.v = v_save_;
         s.v_dot = vd_save_;

@@ -22,6 +22,54 @@ using Vec = Eigen::Matrix<Scalar, N, 1>;
 template <class Scalar, int Rows, int Cols>
 using Mat = Eigen::Matrix<Scalar, Rows, Cols>;
 
+#ifndef FLEXSTRESS_MAX_MODES
+#define FLEXSTRESS_MAX_MODES 64
+#endif
+/// Largest mode count of a body whose count is chosen at run time (NModes = Eigen::Dynamic):
+/// its per-step vectors and small matrices live in storage bounded by this, so a step with a
+/// runtime count allocates nothing either.
+inline constexpr int max_runtime_modes = FLEXSTRESS_MAX_MODES;
+
+/// n + k for a compile-time size, Dynamic for a runtime one.
+constexpr int size_sum(int n, int k) {
+  return n == Eigen::Dynamic ? Eigen::Dynamic : n + k;
+}
+/// n * k for a compile-time size, Dynamic for a runtime one.
+constexpr int size_product(int n, int k) {
+  return n == Eigen::Dynamic ? Eigen::Dynamic : n * k;
+}
+/// The storage bound of a mode-dependent size: the size itself, or its bound at run time.
+constexpr int size_bound(int n, int bound) {
+  return n == Eigen::Dynamic ? bound : n;
+}
+
+/// A matrix of Rows x Cols (either may be Dynamic) stored inline up to MaxRows x MaxCols: the
+/// same type as Mat<Scalar, Rows, Cols> when both sizes are fixed.
+template <class Scalar, int Rows, int Cols, int MaxRows = Rows, int MaxCols = Cols>
+using BoundedMat =
+    Eigen::Matrix<Scalar, Rows, Cols,
+                  (Rows == 1 && Cols != 1)   ? Eigen::RowMajor
+                  : (Cols == 1 && Rows != 1) ? Eigen::ColMajor
+                                             : EIGEN_DEFAULT_MATRIX_STORAGE_ORDER_OPTION,
+                  MaxRows, MaxCols>;
+
+/// Modal-size types of a body with NModes modes (Eigen::Dynamic: chosen at run time, bounded
+/// by max_runtime_modes). R and C give each dimension as a multiple of the mode count plus an
+/// offset, e.g. ModalMat<S, N, 0, 3, 3, 0> is 3 x 3N.
+template <class Scalar, int NModes>
+struct ModalSizes {
+  static constexpr int n = NModes, bound = size_bound(NModes, max_runtime_modes);
+  static constexpr int nv = size_sum(NModes, 6), nv_bound = bound + 6;
+  using VecN = BoundedMat<Scalar, NModes, 1, bound, 1>;
+  using RowN = BoundedMat<Scalar, 1, NModes, 1, bound>;
+  using MatN = BoundedMat<Scalar, NModes, NModes, bound, bound>;
+  using Mat3N = BoundedMat<Scalar, 3, NModes, 3, bound>;
+  using VecV = BoundedMat<Scalar, nv, 1, nv_bound, 1>;
+  using RowV = BoundedMat<Scalar, 1, nv, 1, nv_bound>;
+  using MatV = BoundedMat<Scalar, nv, nv, nv_bound, nv_bound>;
+  using Mat3V = BoundedMat<Scalar, 3, nv, 3, nv_bound>;
+};
+
 /// Double-precision shorthands for precompute code (the FE kernel works in double).
 using Vector3d = Vec3<double>;
 using Matrix3d = Mat3<double>;

@@ -1,6 +1,8 @@
 // Body models of the floating frame of reference formulation (FFRF): rigid bodies and flexible
 // bodies with a compile-time number of deformation modes, one implementation for both (a rigid
-// body is a flexible body with zero modes).
+// body is a flexible body with zero modes). NModes = Eigen::Dynamic is a mode count chosen at
+// run time (from_modal_data's `modes`), its per-step terms in storage bounded by
+// max_runtime_modes: the same code, without the unrolling a fixed count allows.
 //
 // Coordinates: R (frame origin, global), Euler parameters theta, modal coordinates p.
 // Velocities v = [R_dot (global); w (body frame); p_dot]. Equations of motion (FFRF reference
@@ -36,17 +38,25 @@ namespace flexstress {
 
 template <class Scalar, int NModes>
 class BodyModel {
-  static_assert(NModes >= 0, "BodyModel: the number of modes is a non-negative compile-time count");
+  static_assert(NModes >= 0 || NModes == Eigen::Dynamic,
+                "BodyModel: the number of modes is a non-negative count or Eigen::Dynamic");
+  using Sizes = ModalSizes<Scalar, NModes>;
+  static constexpr int bound = Sizes::bound;
+  /// Model constants that scale with N^2 or more: inline for a fixed count, on the heap (set
+  /// up once) for a runtime one, whose bound would make them large.
+  template <int Rows, int Cols>
+  using ConstMat = Eigen::Matrix<Scalar, Rows, Cols>;
 
  public:
   using scalar_type = Scalar;
   static constexpr int num_modes = NModes;
-  static constexpr int nv = 6 + NModes;  ///< velocities
-  static constexpr int nq = 7 + NModes;  ///< coordinates (R, theta, p)
-  using VecN = Vec<Scalar, NModes>;
-  using MatN = Mat<Scalar, NModes, NModes>;
-  using MatV = Mat<Scalar, nv, nv>;
-  using VecV = Vec<Scalar, nv>;
+  static constexpr int nv = size_sum(NModes, 6);  ///< velocities
+  static constexpr int nq = size_sum(NModes, 7);  ///< coordinates (R, theta, p)
+  using VecN = typename Sizes::VecN;
+  using MatN = typename Sizes::MatN;
+  using MatV = typename Sizes::MatV;
+  using VecV = typename Sizes::VecV;
+  using Mat3N = typename Sizes::Mat3N;
   using Kinematics = BodyKinematics<Scalar, NModes>;
   using Vector = BodyVector<Scalar, NModes>;
 
@@ -70,21 +80,33 @@ class BodyModel {
   }
 
   /// A flexible body from reduced FE data, keeping its lowest NModes deformation modes (cast to
-  /// Scalar). Fails if the data has fewer modes than NModes.
-  static Result<BodyModel> from_modal_data(const reduction::ModalBodyData& d) {
-    if (d.num_modes < NModes)
-      return make_error(ErrorCode::size_mismatch, "FFRF body with ", NModes,
+  /// Scalar); with NModes = Eigen::Dynamic its lowest `modes` (all of them if negative). Fails
+  /// if the data has fewer modes than that, or a runtime count exceeds max_runtime_modes.
+  static Result<BodyModel> from_modal_data(const reduction::ModalBodyData& d,
+                                           Index modes = NModes) {
+    if (NModes != Eigen::Dynamic && modes != NModes)
+      return make_error(ErrorCode::size_mismatch, "FFRF body with ", NModes, " modes: asked for ",
+                        modes);
+    if (modes < 0) modes = d.num_modes;
+    if (modes > bound)
+      return make_error(ErrorCode::size_mismatch, "FFRF body with ", modes,
+                        " modes: above the runtime bound of ", bound,
+                        " (define FLEXSTRESS_MAX_MODES to raise it)");
+    if (d.num_modes < modes)
+      return make_error(ErrorCode::size_mismatch, "FFRF body with ", modes,
                         " modes: the modal data has only ", d.num_modes,
                         " (reduce with more interface DOFs or fixed-interface modes)");
+    const int n = static_cast<int>(modes);
     BodyModel b;
+    b.resize_modes(n);
     const auto& in = d.inertia;
     b.mass_ = static_cast<Scalar>(in.mass);
     b.s0_ = in.first[0].cast<Scalar>();
     b.lambda00_ = in.lambda(0, 0).cast<Scalar>();
-    for (int k = 0; k < NModes; ++k) {
+    for (int k = 0; k < n; ++k) {
       b.s_phi_.col(k) = in.first[static_cast<std::size_t>(k + 1)].cast<Scalar>();
       b.lambda0_.template block<3, 3>(0, 3 * k) = in.lambda(0, k + 1).cast<Scalar>();
-      for (int l = 0; l < NModes; ++l) {
+      for (int l = 0; l < n; ++l) {
         const Matrix3d& llk = in.lambda(l + 1, k + 1);
         // Column l of the (9N x N) map p -> vec(W_1..W_N) holds vec(Lambda_lk) at block k.
         for (int c = 0; c < 3; ++c)
@@ -96,25 +118,28 @@ class BodyModel {
           b.gyro_[static_cast<std::size_t>(a)](k, l) = static_cast<Scalar>(g(a));
       }
     }
-    if (d.modal_stiffness.rows() < NModes || d.modal_stiffness.cols() < NModes)
+    if (d.modal_stiffness.rows() < n || d.modal_stiffness.cols() < n)
       return make_error(ErrorCode::size_mismatch, "FFRF body: modal stiffness matrix is ",
-                        d.modal_stiffness.rows(), "x", d.modal_stiffness.cols(), ", need ", NModes);
-    b.stiffness_ = d.modal_stiffness.topLeftCorner(NModes, NModes).cast<Scalar>();
+                        d.modal_stiffness.rows(), "x", d.modal_stiffness.cols(), ", need ", n);
+    b.stiffness_ = d.modal_stiffness.topLeftCorner(n, n).cast<Scalar>();
     b.stiffness_ = (Scalar(0.5) * (b.stiffness_ + b.stiffness_.transpose())).eval();
-    b.zeta_ = d.damping_ratios.head(NModes).cast<Scalar>();
+    b.zeta_ = d.damping_ratios.head(n).cast<Scalar>();
     b.update_damping();
     b.node_positions_.resize(static_cast<std::size_t>(d.num_nodes()));
     for (Index n = 0; n < d.num_nodes(); ++n)
       b.node_positions_[static_cast<std::size_t>(n)] =
           d.node_positions[static_cast<std::size_t>(n)].cast<Scalar>();
     b.node_has_rotation_ = d.node_has_rotation;
-    b.phi_r_ = d.phi_translation.leftCols(NModes).cast<Scalar>();
-    b.phi_theta_ = d.phi_rotation.leftCols(NModes).cast<Scalar>();
+    b.phi_r_ = d.phi_translation.leftCols(n).cast<Scalar>();
+    b.phi_theta_ = d.phi_rotation.leftCols(n).cast<Scalar>();
     b.update_displacement_scale();
     return b;
   }
 
   // ---- constant data --------------------------------------------------------------------
+  /// Number of deformation modes (NModes, or the runtime count).
+  int modes() const { return static_cast<int>(stiffness_.rows()); }
+  int velocities() const { return 6 + modes(); }
   Scalar mass() const { return mass_; }
   const Vec3<Scalar>& first_moment() const { return s0_; }
   /// Modal stiffness K (N x N; diag(omega^2) for orthonormal modes).
@@ -143,27 +168,25 @@ class BodyModel {
     return node_has_rotation_[static_cast<std::size_t>(n)] != 0;
   }
   /// Translational and rotational mode shapes (3 x NModes) at a node.
-  Mat<Scalar, 3, NModes> phi_r(Index node) const { return phi_r_.template middleRows<3>(3 * node); }
-  Mat<Scalar, 3, NModes> phi_theta(Index node) const {
-    return phi_theta_.template middleRows<3>(3 * node);
-  }
+  Mat3N phi_r(Index node) const { return phi_r_.template middleRows<3>(3 * node); }
+  Mat3N phi_theta(Index node) const { return phi_theta_.template middleRows<3>(3 * node); }
 
   /// Modal geometric stiffness per unit inertial load case, for scenes with the
   /// GeometricStiffening effect (reduction/modal_geometric_stiffness.hpp). Fails if the data
   /// has fewer modes than the body or is not finite.
   Status set_geometric_stiffness(const reduction::ModalGeometricStiffness& g) {
-    if (g.num_modes < NModes)
-      return make_error(ErrorCode::size_mismatch, "geometric stiffness for a body with ", NModes,
+    const int n = modes();
+    if (g.num_modes < n)
+      return make_error(ErrorCode::size_mismatch, "geometric stiffness for a body with ", n,
                         " modes: the data has only ", g.num_modes);
-    geometric_.resize(NModes, reduction::num_inertial_load_cases * NModes);
+    geometric_.resize(n, reduction::num_inertial_load_cases * n);
     for (int j = 0; j < reduction::num_inertial_load_cases; ++j) {
       const MatrixXd& c = g.cases[static_cast<std::size_t>(j)];
-      if (c.rows() < NModes || c.cols() < NModes || !c.allFinite())
+      if (c.rows() < n || c.cols() < n || !c.allFinite())
         return make_error(ErrorCode::invalid_argument, "geometric stiffness: load case ", j, " is ",
-                          c.rows(), "x", c.cols(), " or not finite (need ", NModes, "x", NModes,
-                          ")");
-      geometric_.template middleCols<NModes>(NModes * j) =
-          c.topLeftCorner(NModes, NModes).template cast<Scalar>();
+                          c.rows(), "x", c.cols(), " or not finite (need ", n, "x", n, ")");
+      geometric_.template middleCols<NModes>(n * j, n) =
+          c.topLeftCorner(n, n).template cast<Scalar>();
     }
     return Status::success();
   }
@@ -173,8 +196,8 @@ class BodyModel {
   /// no geometric stiffness was set.
   void geometric_stiffness(const Vec3<Scalar>& a_g, const Vec3<Scalar>& alpha,
                            const Vec3<Scalar>& w, MatN& kg) const {
-    kg.setZero();
-    if constexpr (NModes > 0) {
+    kg.setZero(modes(), modes());
+    if constexpr (NModes != 0) {
       if (!has_geometric_stiffness()) return;
       const Scalar w2 = w.squaredNorm();
       const Scalar c[reduction::num_inertial_load_cases] = {
@@ -182,7 +205,8 @@ class BodyModel {
           alpha(1),         alpha(2),    w(0) * w(0) - w2, w(1) * w(1) - w2,
           w(2) * w(2) - w2, w(0) * w(1), w(1) * w(2),      w(2) * w(0)};
       for (int j = 0; j < reduction::num_inertial_load_cases; ++j)
-        if (c[j] != Scalar(0)) kg += c[j] * geometric_.template middleCols<NModes>(NModes * j);
+        if (c[j] != Scalar(0))
+          kg += c[j] * geometric_.template middleCols<NModes>(modes() * j, modes());
     }
   }
 
@@ -191,21 +215,23 @@ class BodyModel {
   /// node's rotation), for a rigid body anywhere (node < 0, `offset` = position).
   Vector point(Index node, const Vec3<Scalar>& offset = Vec3<Scalar>::Zero()) const {
     Vector v;
+    v.psi.setZero(3, modes());
     v.is_point = true;
     if (node < 0) {
       v.c = offset;
       return v;
     }
     v.c = node_position(node) + offset;
-    if constexpr (NModes > 0) v.psi = phi_r(node) - skew(offset) * phi_theta(node);
+    if constexpr (NModes != 0) v.psi = phi_r(node) - skew(offset) * phi_theta(node);
     return v;
   }
   /// A direction e0 (body frame) at a node, turned by the node's deformation rotation.
   Vector direction(Index node, const Vec3<Scalar>& e0) const {
     Vector v;
+    v.psi.setZero(3, modes());
     v.is_point = false;
     v.c = e0;
-    if constexpr (NModes > 0)
+    if constexpr (NModes != 0)
       if (node >= 0) v.psi = -skew(e0) * phi_theta(node);
     return v;
   }
@@ -213,10 +239,10 @@ class BodyModel {
   // ---- state-dependent terms ---------------------------------------------------------------
   /// Per-step quantities shared by the mass matrix and the force terms.
   struct Terms {
-    Vec3<Scalar> s;                ///< S(p)
-    Mat<Scalar, 3, 3 * NModes> w;  ///< [W_1 ... W_N]
-    Mat3<Scalar> j;                ///< J(p), about the frame origin, body frame
-    Mat<Scalar, 3, NModes> c;      ///< C(p)
+    Vec3<Scalar> s;                                                  ///< S(p)
+    BoundedMat<Scalar, 3, size_product(NModes, 3), 3, 3 * bound> w;  ///< [W_1 ... W_N]
+    Mat3<Scalar> j;  ///< J(p), about the frame origin, body frame
+    Mat3N c;         ///< C(p)
   };
 
   void compute_terms(const Kinematics& k, Terms& t) const {
@@ -224,10 +250,14 @@ class BodyModel {
       t.s = s0_;
       t.j = lambda00_.trace() * Mat3<Scalar>::Identity() - lambda00_;
     } else {
+      const int n = modes();
       t.s = s0_ + s_phi_ * k.p;
-      const Vec<Scalar, 9 * NModes> wv = w_map_.lazyProduct(k.p);
+      const BoundedMat<Scalar, size_product(NModes, 9), 1, 9 * bound, 1> wv =
+          w_map_.lazyProduct(k.p);
+      t.w.resize(3, 3 * n);
+      t.c.resize(3, n);
       Mat3<Scalar> u = lambda00_;
-      for (int m = 0; m < NModes; ++m) {
+      for (int m = 0; m < n; ++m) {
         const Eigen::Map<const Mat3<Scalar>> dw(wv.data() + 9 * m);
         auto wm = t.w.template block<3, 3>(0, 3 * m);
         wm = lambda0_.template block<3, 3>(0, 3 * m) + dw;
@@ -239,20 +269,24 @@ class BodyModel {
   }
 
   /// Mass matrix (nv x nv), symmetric.
-  void mass_matrix(const Kinematics& k, const Terms& t, MatV& m) const {
+  /// M is MatV or a map of nv x nv storage.
+  template <class M>
+  void mass_matrix(const Kinematics& k, const Terms& t, M& m) const {
+    const int n = modes();
+    if constexpr (NModes == Eigen::Dynamic) m.resize(6 + n, 6 + n);
     const Mat3<Scalar>& a = k.rotation;
     m.template topLeftCorner<3, 3>() = mass_ * Mat3<Scalar>::Identity();
     const Mat3<Scalar> r_w = -a * skew(t.s);
     m.template block<3, 3>(0, 3) = r_w;
     m.template block<3, 3>(3, 0) = r_w.transpose();
     m.template block<3, 3>(3, 3) = t.j;
-    if constexpr (NModes > 0) {
-      const Mat<Scalar, 3, NModes> r_p = a * s_phi_;
-      m.template block<3, NModes>(0, 6) = r_p;
-      m.template block<NModes, 3>(6, 0) = r_p.transpose();
-      m.template block<3, NModes>(3, 6) = t.c;
-      m.template block<NModes, 3>(6, 3) = t.c.transpose();
-      m.template block<NModes, NModes>(6, 6) = mass_ff_;
+    if constexpr (NModes != 0) {
+      const Mat3N r_p = a * s_phi_;
+      m.template block<3, NModes>(0, 6, 3, n) = r_p;
+      m.template block<NModes, 3>(6, 0, n, 3) = r_p.transpose();
+      m.template block<3, NModes>(3, 6, 3, n) = t.c;
+      m.template block<NModes, 3>(6, 3, n, 3) = t.c.transpose();
+      m.template block<NModes, NModes>(6, 6, n, n) = mass_ff_;
     }
   }
 
@@ -261,19 +295,21 @@ class BodyModel {
     const Vec3<Scalar>& w = k.omega;
     Vec3<Scalar> qr = w.cross(w.cross(t.s));
     Vec3<Scalar> qw = w.cross(t.j * w);
-    if constexpr (NModes > 0) {
+    const int n = modes();
+    if constexpr (NModes == Eigen::Dynamic) q.resize(6 + n);
+    if constexpr (NModes != 0) {
       qr += Scalar(2) * w.cross(Vec3<Scalar>(s_phi_ * k.p_dot));
       Mat3<Scalar> v = Mat3<Scalar>::Zero();
-      for (int m = 0; m < NModes; ++m) v += k.p_dot(m) * t.w.template block<3, 3>(0, 3 * m);
+      for (int m = 0; m < n; ++m) v += k.p_dot(m) * t.w.template block<3, 3>(0, 3 * m);
       qw += Scalar(2) * (w * v.trace() - v.transpose() * w);
       const Scalar w2 = w.squaredNorm();
       MatN g = w(0) * gyro_[0] + w(1) * gyro_[1] + w(2) * gyro_[2];
       VecN qp = Scalar(2) * g.lazyProduct(k.p_dot);
-      for (int m = 0; m < NModes; ++m) {
+      for (int m = 0; m < n; ++m) {
         const auto wm = t.w.template block<3, 3>(0, 3 * m);
         qp(m) += w.dot(wm * w) - w2 * wm.trace();
       }
-      q.template tail<NModes>() = qp;
+      q.template segment<NModes>(6, n) = qp;
     }
     q.template head<3>() = k.rotation * qr;
     q.template segment<3>(3) = qw;
@@ -282,9 +318,10 @@ class BodyModel {
   /// Generalized gravity force (added on the right-hand side): [m g; S x A^T g; S_Phi^T A^T g].
   void gravity_force(const Kinematics& k, const Terms& t, const Vec3<Scalar>& g, VecV& q) const {
     const Vec3<Scalar> gb = k.rotation.transpose() * g;
+    if constexpr (NModes == Eigen::Dynamic) q.resize(6 + modes());
     q.template head<3>() = mass_ * g;
     q.template segment<3>(3) = t.s.cross(gb);
-    if constexpr (NModes > 0) q.template tail<NModes>() = s_phi_.transpose() * gb;
+    if constexpr (NModes != 0) q.template segment<NModes>(6, modes()) = s_phi_.transpose() * gb;
   }
 
   /// Kinetic energy 1/2 v^T M v.
@@ -293,7 +330,7 @@ class BodyModel {
     compute_terms(k, t);
     MatV m;
     mass_matrix(k, t, m);
-    VecV v;
+    VecV v(6 + modes());
     v << k.velocity, k.omega, k.p_dot;
     return Scalar(0.5) * v.dot(m * v);
   }
@@ -316,7 +353,7 @@ class BodyModel {
     Terms t;
     compute_terms(k, t);
     Vec3<Scalar> body = k.omega.cross(t.s);
-    if constexpr (NModes > 0) body += s_phi_ * k.p_dot;
+    if constexpr (NModes != 0) body += s_phi_ * k.p_dot;
     return mass_ * k.velocity + k.rotation * body;
   }
   /// Angular momentum about the global origin: R x L + A (S x A^T R_dot + J w + C p_dot).
@@ -325,7 +362,7 @@ class BodyModel {
     compute_terms(k, t);
     Vec3<Scalar> body =
         t.s.cross(Vec3<Scalar>(k.rotation.transpose() * k.velocity)) + t.j * k.omega;
-    if constexpr (NModes > 0) body += t.c * k.p_dot;
+    if constexpr (NModes != 0) body += t.c * k.p_dot;
     return k.position.cross(linear_momentum(k)) + k.rotation * body;
   }
 
@@ -334,7 +371,7 @@ class BodyModel {
   /// mass-weighted RMS translation sqrt(M_ff,kk / m) (for a mode that moves no node, such as the
   /// torsion of a beam about its axis, the first is zero).
   void update_displacement_scale() {
-    for (int k = 0; k < NModes; ++k) {
+    for (int k = 0; k < modes(); ++k) {
       Scalar largest = Scalar(0);
       for (Index n = 0; n < phi_r_.rows() / 3; ++n)
         largest = std::max(largest, phi_r_.template middleRows<3>(3 * n).col(k).norm());
@@ -347,7 +384,8 @@ class BodyModel {
   /// D from the damping ratios in the modal basis of (K, M_ff): with K Z = M_ff Z W^2 and
   /// Z^T M_ff Z = 1, D = M_ff Z (2 zeta W) Z^T M_ff. Also records the highest frequency.
   void update_damping() {
-    if constexpr (NModes > 0) {
+    if constexpr (NModes != 0) {
+      if (modes() == 0) return;
       // Setup only: solved in dynamic double precision (one Eigen instantiation for every N).
       const MatrixXd k = stiffness_.template cast<double>(), m = mass_ff_.template cast<double>();
       Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> es(k, m);
@@ -359,18 +397,34 @@ class BodyModel {
     }
   }
 
+  /// Sizes every mode-dependent member for n modes, zeroed (setup).
+  void resize_modes(int n) {
+    s_phi_.setZero(3, n);
+    lambda0_.setZero(3, 3 * n);
+    w_map_.setZero(9 * n, n);
+    mass_ff_.setZero(n, n);
+    displacement_scale_.setOnes(n);
+    for (auto& g : gyro_) g.setZero(n, n);
+    stiffness_.setZero(n, n);
+    damping_.setZero(n, n);
+    zeta_.setZero(n);
+  }
+
+  static constexpr int n0 = NModes == Eigen::Dynamic ? 0 : NModes;  ///< before resize_modes
   Scalar mass_ = Scalar(0);
   Vec3<Scalar> s0_ = Vec3<Scalar>::Zero();
   Mat3<Scalar> lambda00_ = Mat3<Scalar>::Zero();
-  Mat<Scalar, 3, NModes> s_phi_ = Mat<Scalar, 3, NModes>::Zero();
-  Mat<Scalar, 3, 3 * NModes> lambda0_ = Mat<Scalar, 3, 3 * NModes>::Zero();
-  Mat<Scalar, 9 * NModes, NModes> w_map_ = Mat<Scalar, 9 * NModes, NModes>::Zero();
-  MatN mass_ff_ = MatN::Zero();
-  VecN displacement_scale_ = VecN::Ones();
-  std::array<MatN, 3> gyro_{MatN::Zero(), MatN::Zero(), MatN::Zero()};
-  MatN stiffness_ = MatN::Zero();
-  MatN damping_ = MatN::Zero();
-  VecN zeta_ = VecN::Zero();
+  Mat3N s_phi_ = Mat3N::Zero(3, n0);
+  ConstMat<3, size_product(NModes, 3)> lambda0_ = decltype(lambda0_)::Zero(3, 3 * n0);
+  ConstMat<size_product(NModes, 9), NModes> w_map_ = decltype(w_map_)::Zero(9 * n0, n0);
+  MatN mass_ff_ = MatN::Zero(n0, n0);
+  VecN displacement_scale_ = VecN::Ones(n0);
+  std::array<ConstMat<NModes, NModes>, 3> gyro_{ConstMat<NModes, NModes>::Zero(n0, n0),
+                                                ConstMat<NModes, NModes>::Zero(n0, n0),
+                                                ConstMat<NModes, NModes>::Zero(n0, n0)};
+  MatN stiffness_ = MatN::Zero(n0, n0);
+  MatN damping_ = MatN::Zero(n0, n0);
+  VecN zeta_ = VecN::Zero(n0);
   Scalar max_frequency_ = Scalar(0);
   std::vector<Vec3<Scalar>> node_positions_;
   std::vector<unsigned char> node_has_rotation_;

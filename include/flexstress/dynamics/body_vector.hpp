@@ -23,23 +23,28 @@ namespace flexstress {
 
 /// The kinematic state of one body needed to evaluate body vectors: orientation A, modal
 /// coordinates p, body angular velocity w and modal velocities p_dot.
+/// NModes may be Eigen::Dynamic (a mode count chosen at run time): then p and p_dot are
+/// sized by the caller, in storage bounded by max_runtime_modes.
 template <class Scalar, int NModes>
 struct BodyKinematics {
+  using VecN = typename ModalSizes<Scalar, NModes>::VecN;
   Vec3<Scalar> position = Vec3<Scalar>::Zero();      ///< R
   Vec3<Scalar> velocity = Vec3<Scalar>::Zero();      ///< R_dot
   Mat3<Scalar> rotation = Mat3<Scalar>::Identity();  ///< A
-  Vec<Scalar, NModes> p = Vec<Scalar, NModes>::Zero();
+  VecN p = VecN::Zero(NModes == Eigen::Dynamic ? 0 : NModes);
   Vec3<Scalar> omega = Vec3<Scalar>::Zero();  ///< w, body frame
-  Vec<Scalar, NModes> p_dot = Vec<Scalar, NModes>::Zero();
+  VecN p_dot = VecN::Zero(NModes == Eigen::Dynamic ? 0 : NModes);
+  Index modes() const { return p.size(); }
 };
 
 template <class Scalar, int NModes>
 struct BodyVector {
-  static constexpr int nv = 6 + NModes;
-  using RowV = Eigen::Matrix<Scalar, 1, nv>;
+  using Sizes = ModalSizes<Scalar, NModes>;
+  static constexpr int nv = Sizes::nv;
+  using RowV = typename Sizes::RowV;
 
   Vec3<Scalar> c = Vec3<Scalar>::Zero();
-  Mat<Scalar, 3, NModes> psi = Mat<Scalar, 3, NModes>::Zero();
+  typename Sizes::Mat3N psi = Sizes::Mat3N::Zero(3, NModes == Eigen::Dynamic ? 0 : NModes);
   bool is_point = false;
 
   /// Body-frame value u = c + Psi p.
@@ -85,7 +90,7 @@ struct BodyVector {
     const Vec3<Scalar> w_u = k.omega.cross(u);
     Vec3<Scalar> body_velocity = w_u;
     Vec3<Scalar> body_convective = k.omega.cross(w_u);
-    if constexpr (NModes > 0) {
+    if constexpr (NModes != 0) {
       const Vec3<Scalar> u_dot = psi * k.p_dot;  // deformation rate
       body_velocity += u_dot;
       body_convective += Scalar(2) * k.omega.cross(u_dot);
@@ -96,22 +101,22 @@ struct BodyVector {
   }
   RowV row(const BodyKinematics<Scalar, NModes>& k, const Vec3<Scalar>& u,
            const Vec3<Scalar>& b) const {
-    RowV r;
+    RowV r(1, 6 + psi.cols());
     const Vec3<Scalar> bb = k.rotation.transpose() * b;
     if (is_point)
       r.template head<3>() = b.transpose();
     else
       r.template head<3>().setZero();
     r.template segment<3>(3) = u.cross(bb).transpose();
-    if constexpr (NModes > 0) r.template tail<NModes>() = bb.transpose() * psi;
+    if constexpr (NModes != 0) r.template segment<NModes>(6, psi.cols()) = bb.transpose() * psi;
     return r;
   }
   /// Full Jacobian J (3 x nv), global rows.
-  Eigen::Matrix<Scalar, 3, nv> jacobian(const BodyKinematics<Scalar, NModes>& k) const {
-    Eigen::Matrix<Scalar, 3, nv> j;
+  typename Sizes::Mat3V jacobian(const BodyKinematics<Scalar, NModes>& k) const {
+    typename Sizes::Mat3V j(3, 6 + psi.cols());
     j.template leftCols<3>() = is_point ? Mat3<Scalar>::Identity() : Mat3<Scalar>::Zero();
     j.template middleCols<3>(3) = -k.rotation * skew(local(k));
-    if constexpr (NModes > 0) j.template rightCols<NModes>() = k.rotation * psi;
+    if constexpr (NModes != 0) j.template rightCols<NModes>(psi.cols()) = k.rotation * psi;
     return j;
   }
 };

@@ -45,6 +45,7 @@
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/dynamics/scene.hpp"
+#include "flexstress/dynamics/step_settings.hpp"
 
 namespace flexstress {
 
@@ -73,100 +74,8 @@ class ImplicitIntegrator {
   using MatVV = typename SceneT::MatVV;
   static constexpr int nv = SceneT::nv, nc = SceneT::nc;
 
-  struct Settings {
-    Scalar step = Scalar(1e-3);
-    /// Spectral radius at infinity: 1 conserves energy (no numerical damping), smaller values
-    /// damp the highest frequencies. Scenes with joints need rho < 1: with rho = 1 (the
-    /// trapezoidal rule) the multipliers of an index-3 system are only weakly stable
-    /// (Cardona & Geradin, Comput. Struct. 33 (1989)), and the redundant Bricard loop still
-    /// grows an oscillation at rho = 0.95 but is stable at 0.8 (measured: tests/dynamics).
-    /// rho = 1 is for energy studies of unconstrained bodies.
-    Scalar spectral_radius = Scalar(0.8);
-    int max_iterations = 30;
-    /// Newton stops when the largest correction, seen as a change of acceleration b' dx, is
-    /// below this, and the largest constraint violation is below the same amount divided by b'.
-    /// Units: m/s^2 for translations and for modal coordinates, whose corrections count with
-    /// their mode's largest nodal translation (BodyModel::modal_displacement_scale; modal units
-    /// would depend on how the modes are normalized), rad/s^2 for rotations. Scaling with b' ~
-    /// 1/h^2 keeps the solver's error below the truncation error at every step size: a fixed
-    /// position tolerance would let velocity errors g' dx ~ tol/h accumulate as an energy random
-    /// walk at small h.
-    Scalar acceleration_tolerance = std::is_same_v<Scalar, float> ? Scalar(1e-2) : Scalar(1e-5);
-    /// Floor of the position tolerances (round-off of coordinates of order one).
-    Scalar position_floor = Scalar(100) * std::numeric_limits<Scalar>::epsilon();
-    /// A converged step whose violation (position or velocity) still exceeds this reports
-    /// constraint_violation.
-    Scalar violation_limit = std::is_same_v<Scalar, float> ? Scalar(1e-3) : Scalar(1e-6);
-    /// Penalty alpha relative to b' times the largest mass-matrix diagonal entry. Larger values
-    /// converge the multipliers faster, but the iteration matrix omits the geometric stiffness
-    /// of the transient penalty forces (alpha times the predictor's constraint violation), so
-    /// the factor must stay well below L / |Phi_predicted| (about 1e6 at h = 1e-2, far more at
-    /// h = 1e-3).
-    Scalar penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e2) : Scalar(1e3);
-    bool reuse_factorization = true;
-    /// Refactorize when a correction shrinks by less than this factor (stale matrix): at once
-    /// from the third correction on; when it is the second, at the start of the next step,
-    /// unless the step may end at its iteration limit (accept_at_iteration_limit), whose few
-    /// iterations must contract fast.
-    /// The second correction repairs the first, made with the stale matrix from the predictor,
-    /// and a fresh matrix computes the same repair (measured on the crane: equal to 1 %), so
-    /// refactorizing there would only pay off in later steps, which refactorizing at the next
-    /// step's first iterate serves better (the crane: 0.37 instead of 0.44 factorizations and
-    /// 2.61 instead of 2.73 iterations per step).
-    Scalar refactor_rate = Scalar(0.25);
-    /// Reuse a factorization across rotations of the bodies. A body's own blocks of the
-    /// iteration matrix (its mass matrix, M_Rw = -A skew(S) and M_Rp = A S_Phi, and the part of
-    /// alpha B^T B its joints put on it) depend on its rotation A only through T S_0 T^T,
-    /// T = diag(A, 1, 1) on [R_dot, w, p_dot]; the solve with a reused matrix rotates each body's
-    /// R_dot components by A_now A_factorized^T (Q^T before, Q after), which is exact for those
-    /// blocks and leaves the error of relative rotations in the blocks that couple two bodies.
-    /// The penalty makes the rotation matter: alpha B^T B is about 1e3 times the mass matrix,
-    /// and on the crane one step changed its entries coupling the boom's R_dot and a mode by
-    /// 0.22 of M b'. Measured with this alone (docs/performance.md): the crane 0.37 -> 0.16
-    /// factorizations and 2.61 -> 2.47 iterations per step; the flexible beam released
-    /// horizontal 0.99 -> 0.39 and 4.88 -> 3.81; the rigid crane loop and the 40-bar chain
-    /// unchanged. The motion is the same to the Newton
-    /// tolerance: only the matrix of the modified Newton changes, not the residual.
-    bool corotate_factorization = true;
-    /// Project velocities onto B v + Phi_t = 0 after each step. Index-3 integration keeps the
-    /// positions on the constraints and the velocities within O(h^2) of them (bounded, no
-    /// drift), so this is optional; each projection removes the O(h^2) component and with it
-    /// an O(h^4) amount of kinetic energy per step.
-    bool project_velocities = false;
-    /// Also project accelerations onto B v_dot + conv = 0 (needs project_velocities).
-    bool project_accelerations = false;
-    /// Evaluate the constraints once more at the accepted state, so that workspace() (Phi, B,
-    /// Phi_t, conv) describes the state a step returns and its violation check reads the final
-    /// positions. Off, the workspace keeps the last Newton iterate's evaluation (one correction
-    /// earlier, without rates) and the check reads that iterate's Phi; the motion is the same
-    /// to the bit and a step saves one constraint evaluation (8 % of the crane's step).
-    /// Projections and stateful force elements need the evaluation and make it regardless.
-    bool refresh_workspace = true;
-    int projection_iterations = 3;
-    /// Predict v_dot by linear extrapolation of the last two steps (else: constant).
-    bool extrapolate_predictor = true;
-    /// Predict the multipliers the same way (else: start from the last step's). Held constant,
-    /// their change over the step is left to the penalty updates lambda* += alpha Phi, and the
-    /// second Newton correction is mostly that change: on the crane it kept the contraction
-    /// rate near refactor_rate, so that 0.75 steps in 1 refactorized (extrapolated: 0.44, and
-    /// 2.73 iterations per step instead of 3.19; docs/performance.md).
-    bool extrapolate_multipliers = true;
-    /// Real-time budget: a step that reaches max_iterations with a finite state keeps its last
-    /// iterate instead of being undone (counted in Statistics::over_budget), so each step costs
-    /// at most max_iterations corrections. The accuracy this costs is measured in
-    /// bench/accuracy_vs_time. It is also how a scene passes singular configurations, where
-    /// the multipliers are undefined and their update stalls (docs/dynamics.md, IFToMM A02).
-    bool accept_at_iteration_limit = false;
-  };
-
-  struct Statistics {
-    long steps = 0;
-    long iterations = 0;
-    long factorizations = 0;
-    int last_iterations = 0;
-    int last_factorizations = 0;
-    long over_budget = 0;  ///< steps kept at the iteration limit (accept_at_iteration_limit)
-  };
+  using Settings = ImplicitSettings<Scalar>;
+  using Statistics = StepStatistics;
 
   explicit ImplicitIntegrator(const SceneT& scene, const Settings& settings = Settings())
       : scene_(&scene), settings_(settings) {

@@ -7,6 +7,7 @@
 // K_r = N^T K_eff N, M_r = N^T M N. For tests and design studies; allocates.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -21,6 +22,38 @@ struct Linearization {
   Eigen::MatrixXd mass, stiffness;  ///< reduced to the joints' null space
   Eigen::VectorXd frequencies_hz;   ///< ascending; negative eigenvalues give negative values
 };
+
+/// M and K (nv x nv) projected on an orthonormal basis of the null space of B (the motions the
+/// joints allow), K symmetrized, and the frequencies of the reduced pair.
+inline Result<Linearization> linearization_on_null_space(const Eigen::MatrixXd& m,
+                                                         Eigen::MatrixXd k,
+                                                         const Eigen::MatrixXd& b) {
+  const Eigen::Index nv = m.rows();
+  k = 0.5 * (k + k.transpose()).eval();
+  Eigen::MatrixXd n = Eigen::MatrixXd::Identity(nv, nv);
+  if (b.rows() > 0) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(b, Eigen::ComputeFullV);
+    const double tol =
+        1e-9 * std::max(1.0, svd.singularValues().size() ? svd.singularValues()(0) : 1.0);
+    Eigen::Index rank = 0;
+    for (Eigen::Index i = 0; i < svd.singularValues().size(); ++i)
+      if (svd.singularValues()(i) > tol) ++rank;
+    n = svd.matrixV().rightCols(nv - rank);
+  }
+  Linearization lin;
+  lin.mass = n.transpose() * m * n;
+  lin.stiffness = n.transpose() * k * n;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(lin.stiffness, lin.mass);
+  if (es.info() != Eigen::Success)
+    return make_error(ErrorCode::not_converged, "linearize: eigen solve failed");
+  lin.frequencies_hz.resize(es.eigenvalues().size());
+  for (Eigen::Index i = 0; i < lin.frequencies_hz.size(); ++i) {
+    const double l = es.eigenvalues()(i);
+    lin.frequencies_hz(i) =
+        (l >= 0 ? 1 : -1) * std::sqrt(std::abs(l)) / (2 * 3.14159265358979323846);
+  }
+  return lin;
+}
 
 /// Linearizes `scene` about the state s (velocities are treated as zero; s.lambda must hold the
 /// equilibrium multipliers, e.g. from solve_static_equilibrium).
@@ -52,28 +85,7 @@ Result<Linearization> linearize(const SceneT& scene, const typename SceneT::Stat
     e(j) = step;
     k.col(j) = (residual(e) - residual(-e)) / (2 * step);
   }
-  k = 0.5 * (k + k.transpose()).eval();
-  // Null space of B.
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(b, Eigen::ComputeFullV);
-  const double tol =
-      1e-9 * std::max(1.0, svd.singularValues().size() ? svd.singularValues()(0) : 1.0);
-  int rank = 0;
-  for (int i = 0; i < svd.singularValues().size(); ++i)
-    if (svd.singularValues()(i) > tol) ++rank;
-  const Eigen::MatrixXd n = svd.matrixV().rightCols(nv - rank);
-  Linearization lin;
-  lin.mass = n.transpose() * m * n;
-  lin.stiffness = n.transpose() * k * n;
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(lin.stiffness, lin.mass);
-  if (es.info() != Eigen::Success)
-    return make_error(ErrorCode::not_converged, "linearize: eigen solve failed");
-  lin.frequencies_hz.resize(es.eigenvalues().size());
-  for (Eigen::Index i = 0; i < lin.frequencies_hz.size(); ++i) {
-    const double l = es.eigenvalues()(i);
-    lin.frequencies_hz(i) =
-        (l >= 0 ? 1 : -1) * std::sqrt(std::abs(l)) / (2 * 3.14159265358979323846);
-  }
-  return lin;
+  return linearization_on_null_space(m, k, b);
 }
 
 }  // namespace flexstress

@@ -79,7 +79,8 @@ struct VectorEval {
 /// A marker evaluated at a body state: what joints and force elements read.
 template <class Scalar, int NModes>
 struct MarkerEval {
-  static constexpr int nv = 6 + NModes;
+  static constexpr int nv = size_sum(NModes, 6);
+  using RowV = typename BodyVector<Scalar, NModes>::RowV;
   const Marker<Scalar, NModes>* marker = nullptr;
   const BodyKinematics<Scalar, NModes>* kin = nullptr;
   VectorEval<Scalar> origin, x, y, z;
@@ -99,15 +100,15 @@ struct MarkerEval {
     eval(m.z, z, rates, parts & MarkerParts::z);
   }
   /// Row b^T J of the marker origin or of an axis (1 x nv).
-  Eigen::Matrix<Scalar, 1, nv> row_origin(const Vec3<Scalar>& b) const {
-    return marker->origin.row(*kin, origin.local, b);
-  }
-  Eigen::Matrix<Scalar, 1, nv> row_axis(int a, const Vec3<Scalar>& b) const {
+  RowV row_origin(const Vec3<Scalar>& b) const { return marker->origin.row(*kin, origin.local, b); }
+  RowV row_axis(int a, const Vec3<Scalar>& b) const {
     return (a == 0 ? marker->x : a == 1 ? marker->y : marker->z).row(*kin, axis(a).local, b);
   }
   const VectorEval<Scalar>& axis(int a) const { return a == 0 ? x : a == 1 ? y : z; }
   /// Jacobian of the origin (3 x nv).
-  Eigen::Matrix<Scalar, 3, nv> jacobian_origin() const { return marker->origin.jacobian(*kin); }
+  typename ModalSizes<Scalar, NModes>::Mat3V jacobian_origin() const {
+    return marker->origin.jacobian(*kin);
+  }
 
  private:
   void eval(const BodyVector<Scalar, NModes>& v, VectorEval<Scalar>& e, bool rates,

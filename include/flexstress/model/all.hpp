@@ -1,0 +1,11 @@
+// The runtime model in one include: ModelBuilder, Model, Data, the step and the read-outs.
+#pragma once
+
+#include "flexstress/model/data.hpp"
+#include "flexstress/model/equilibrium.hpp"
+#include "flexstress/model/handles.hpp"
+#include "flexstress/model/implicit_step.hpp"
+#include "flexstress/model/model.hpp"
+#include "flexstress/model/model_builder.hpp"
+#include "flexstress/model/motion_law.hpp"
+#include "flexstress/model/readouts.hpp"

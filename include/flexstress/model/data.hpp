@@ -1,0 +1,130 @@
+// Everything that changes while a model runs: coordinates, velocities, multipliers, the
+// evaluated workspace, runtime switches, current laws and inputs, the integrator's history and
+// its scratch. Allocated once, when a Data is made for its Model; a step writes only into it.
+// Many Data can share one Model (one per thread of a batch).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/envelope_cholesky.hpp"
+#include "flexstress/core/euler_parameters.hpp"
+#include "flexstress/core/types.hpp"
+#include "flexstress/dynamics/motion_laws.hpp"
+#include "flexstress/dynamics/step_settings.hpp"
+#include "flexstress/model/model.hpp"
+
+namespace flexstress {
+
+template <class Scalar>
+struct Data {
+  using VectorX = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using MatrixX = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  // ---- state --------------------------------------------------------------------------------
+  Scalar t = Scalar(0);
+  VectorX q;       ///< coordinates [R; theta; p] per body
+  VectorX v;       ///< velocities [R_dot; w; p_dot] per body
+  VectorX v_dot;   ///< accelerations
+  VectorX a;       ///< algorithmic accelerations (generalized-alpha)
+  VectorX lambda;  ///< constraint multipliers (M v_dot + B^T lambda = Q)
+
+  // ---- runtime changes (by handle: set_joint_active, set_law, set_input) ------------------
+  std::vector<unsigned char> joint_active;
+  std::vector<MotionLaw<Scalar>> laws;      ///< the drivers' current laws
+  std::vector<MotionValue<Scalar>> inputs;  ///< by InputId
+  std::vector<unsigned char> input_set;     ///< whether set_input was called for it
+  std::uint64_t revision = 0;               ///< counts runtime changes to the topology
+
+  // ---- workspace (what an evaluation writes) -----------------------------------------------
+  std::vector<Mat3<Scalar>> rotation;        ///< A per body
+  std::vector<MarkerState<Scalar>> markers;  ///< by Model::Marker::slot
+  VectorX mass;      ///< per body its nv x nv mass block, column-major (Body::mass_offset)
+  VectorX force;     ///< Q_e - Q_v - K p - D p_dot and force elements
+  VectorX jacobian;  ///< per joint and body its rows x nv block (Joint::jac_i, jac_j)
+  VectorX phi, phi_t, conv;
+  VectorX row_scratch;  ///< one body's row (force elements)
+
+  // ---- integrator -------------------------------------------------------------------------
+  ImplicitSettings<Scalar> settings;
+  StepStatistics statistics;
+  struct Integrator {
+    Scalar alpha_m = 0, alpha_f = 0, gamma = 0, beta = 0;
+    Scalar beta_prime = 0, gamma_prime = 0, penalty = 0, tol_x = 0;
+    bool have_factorization = false, has_previous = false;
+    int converged_multipliers = 0;
+    std::uint64_t revision = 0;  ///< the Data revision the history was built for
+    bool initialized = false;
+    MatrixX iteration;
+    EnvelopeCholesky<Scalar, Eigen::Dynamic> cholesky;
+    std::vector<Mat3<Scalar>> factorized_rotations;
+    VectorX correction_scale;
+    VectorX r, dx, v_n, vd_n, a_n, a1, tmp, vd_prev, v_save, vd_save, q_n, q_save;
+    VectorX e, lambda_star, lambda_prev, lambda_save;
+  } integrator;
+
+  /// The reason of the last failure (initialization, a step's restart), for a caller that
+  /// only sees a status; fixed storage, written without allocating.
+  std::array<char, 256> message{};
+
+  Data() = default;
+  /// Allocates everything for `model` and puts the bodies at their initial poses, at rest.
+  explicit Data(const Model<Scalar>& model) { reset(model); }
+
+  /// Back to the initial state of `model` (allocates: setup only).
+  void reset(const Model<Scalar>& model) {
+    const int nv = model.num_velocities(), nc = model.num_constraints();
+    t = Scalar(0);
+    q.setZero(model.num_coordinates());
+    for (const auto& b : model.bodies()) {
+      q.template segment<3>(b.q_offset) = b.initial_position;
+      q.template segment<4>(b.q_offset + 3) = b.initial_orientation;
+    }
+    v.setZero(nv);
+    v_dot.setZero(nv);
+    a.setZero(nv);
+    lambda.setZero(nc);
+    joint_active.assign(model.joints().size(), 1);
+    laws = model.laws();
+    inputs.assign(model.inputs().size(), MotionValue<Scalar>());
+    input_set.assign(model.inputs().size(), 0);
+    revision = 0;
+    rotation.assign(model.bodies().size(), Mat3<Scalar>::Identity());
+    markers.assign(static_cast<std::size_t>(model.num_marker_slots()), MarkerState<Scalar>());
+    for (std::size_t g = 0; g < model.ground_markers().size(); ++g)
+      markers[static_cast<std::size_t>(model.ground_marker_slots()[g])] = model.ground_markers()[g];
+    mass.setZero(model.mass_size());
+    force.setZero(nv);
+    jacobian.setZero(model.jacobian_size());
+    phi.setZero(nc);
+    phi_t.setZero(nc);
+    conv.setZero(nc);
+    int widest = 6;
+    for (const auto& b : model.bodies()) widest = std::max(widest, b.nv);
+    row_scratch.setZero(widest);
+    settings = model.settings();
+    statistics = StepStatistics();
+    Integrator& in = integrator;
+    in = Integrator();
+    in.iteration.setZero(nv, nv);
+    in.cholesky.analyze(model.block_pattern());
+    in.factorized_rotations.assign(model.bodies().size(), Mat3<Scalar>::Identity());
+    in.correction_scale.setOnes(nv);
+    for (const auto& b : model.bodies())
+      for (int k = 0; k < b.modes; ++k)
+        in.correction_scale(b.v_offset + 6 + k) = b.displacement_scale[static_cast<std::size_t>(k)];
+    for (VectorX* x : {&in.r, &in.dx, &in.v_n, &in.vd_n, &in.a_n, &in.a1, &in.tmp, &in.vd_prev,
+                       &in.v_save, &in.vd_save})
+      x->setZero(nv);
+    in.q_n.setZero(model.num_coordinates());
+    in.q_save.setZero(model.num_coordinates());
+    for (VectorX* x : {&in.e, &in.lambda_star, &in.lambda_prev, &in.lambda_save}) x->setZero(nc);
+    message.fill('\0');
+  }
+};
+
+}  // namespace flexstress

@@ -1,0 +1,34 @@
+// Typed handles to the parts of a Model: what the builder returns and every read-out, runtime
+// change and message takes. A handle is an index into its model (no pointers, so it stays valid
+// when a model is copied or a Data is made for it), typed so that a joint cannot be passed where
+// a body is meant.
+#pragma once
+
+namespace flexstress {
+
+template <class Tag>
+struct Handle {
+  int index = -1;
+  constexpr bool valid() const { return index >= 0; }
+  friend constexpr bool operator==(Handle a, Handle b) { return a.index == b.index; }
+  friend constexpr bool operator!=(Handle a, Handle b) { return a.index != b.index; }
+};
+
+struct BodyTag;
+struct MarkerTag;
+struct JointTag;
+struct ForceTag;
+struct InputTag;
+
+/// A body; the ground is the body with index -1 (ModelBuilder::ground()).
+using BodyId = Handle<BodyTag>;
+/// A frame attached to a body, where joints and force elements act.
+using MarkerId = Handle<MarkerTag>;
+/// A joint or driver (its constraint equations).
+using JointId = Handle<JointTag>;
+/// A force element (spring-damper, ...).
+using ForceId = Handle<ForceTag>;
+/// A value set from outside before each step (set_input), read by a motion law.
+using InputId = Handle<InputTag>;
+
+}  // namespace flexstress

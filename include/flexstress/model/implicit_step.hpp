@@ -1,0 +1,399 @@
+// The implicit step over (model, data): Lie-group generalized-alpha with an index-3 augmented
+// Lagrangian, modified Newton on a reused envelope-Cholesky factorization turned with the
+// bodies, and optional velocity projection. The method, its references and the measurements
+// behind each setting are in dynamics/implicit_integrator.hpp and dynamics/step_settings.hpp;
+// this is the same algorithm on a runtime model.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/status.hpp"
+#include "flexstress/core/types.hpp"
+#include "flexstress/model/data.hpp"
+#include "flexstress/model/model.hpp"
+#include "flexstress/model/pipeline.hpp"
+
+namespace flexstress {
+
+namespace detail {
+
+template <class Scalar>
+void set_step_parameters(Data<Scalar>& d) {
+  auto& in = d.integrator;
+  const Scalar rho = d.settings.spectral_radius, h = d.settings.step;
+  in.alpha_m = (Scalar(2) * rho - Scalar(1)) / (rho + Scalar(1));
+  in.alpha_f = rho / (rho + Scalar(1));
+  in.gamma = Scalar(0.5) - in.alpha_m + in.alpha_f;
+  in.beta = Scalar(0.25) * (in.gamma + Scalar(0.5)) * (in.gamma + Scalar(0.5));
+  in.beta_prime = (Scalar(1) - in.alpha_m) / (h * h * in.beta * (Scalar(1) - in.alpha_f));
+  in.gamma_prime = in.gamma / (h * in.beta);
+  in.tol_x = std::max(d.settings.acceleration_tolerance / in.beta_prime, d.settings.position_floor);
+  in.have_factorization = false;
+}
+
+template <class Scalar>
+void record_rotations(const Model<Scalar>& model, Data<Scalar>& d) {
+  for (std::size_t b = 0; b < model.bodies().size(); ++b)
+    d.integrator.factorized_rotations[b] = d.rotation[b];
+}
+
+/// S = M b' + D g' + K + alpha B^T B at the current evaluation.
+template <class Scalar>
+void factorize_iteration(const Model<Scalar>& model, Data<Scalar>& d) {
+  auto& in = d.integrator;
+  in.iteration.setZero();
+  set_mass_blocks(model, d, in.iteration);
+  const Scalar m_ref = max_abs(in.iteration.diagonal());
+  in.iteration *= in.beta_prime;
+  add_modal_stiffness_damping(model, in.iteration, Scalar(1), in.gamma_prime);
+  in.penalty = d.settings.penalty_factor * in.beta_prime * m_ref;
+  add_constraint_gram(model, d, in.penalty, in.iteration);
+  in.cholesky.compute(in.iteration);
+  record_rotations(model, d);
+  in.have_factorization = true;
+  ++d.statistics.factorizations;
+  ++d.statistics.last_factorizations;
+}
+
+/// The metric of projections outside a step: M + alpha B^T B (evaluates at the state).
+template <class Scalar>
+void factorize_projection(const Model<Scalar>& model, Data<Scalar>& d) {
+  auto& in = d.integrator;
+  evaluate(model, d);
+  in.iteration.setZero();
+  set_mass_blocks(model, d, in.iteration);
+  const Scalar m_ref = max_abs(in.iteration.diagonal());
+  in.penalty = d.settings.penalty_factor * m_ref;
+  add_constraint_gram(model, d, in.penalty, in.iteration);
+  in.cholesky.compute(in.iteration);
+  record_rotations(model, d);
+  in.have_factorization = false;  // the step needs its own matrix
+}
+
+/// x <- S^-1 x, turned with the bodies unless S was factorized at this iterate (`fresh`):
+/// x <- Q S^-1 Q^T x, Q rotating each body's R_dot part by A_now A_factorized^T.
+template <class Scalar, class V>
+void solve_turned(const Model<Scalar>& model, Data<Scalar>& d, V& x, bool fresh) {
+  auto& in = d.integrator;
+  const bool turn = d.settings.corotate_factorization && !fresh;
+  const auto& bodies = model.bodies();
+  if (turn)
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      auto t = x.template segment<3>(bodies[b].v_offset);
+      const Vec3<Scalar> local =
+          in.factorized_rotations[b] * (d.rotation[b].transpose() * Vec3<Scalar>(t));
+      t = local;
+    }
+  in.cholesky.solve_in_place(x);
+  if (turn)
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      auto t = x.template segment<3>(bodies[b].v_offset);
+      const Vec3<Scalar> global =
+          d.rotation[b] * (in.factorized_rotations[b].transpose() * Vec3<Scalar>(t));
+      t = global;
+    }
+}
+
+/// v <- v - S^-1 alpha B^T (B v + Phi_t), repeated (the workspace holds B and Phi_t at d).
+template <class Scalar>
+void project_velocities(const Model<Scalar>& model, Data<Scalar>& d, int iterations) {
+  auto& in = d.integrator;
+  for (int k = 0; k < iterations; ++k) {
+    jacobian_times(model, d, d.v, in.e);
+    in.e += d.phi_t;
+    if (max_abs(in.e) <= d.settings.position_floor * (Scalar(1) + max_abs(d.v))) break;
+    in.e *= in.penalty;
+    in.tmp.setZero();
+    add_jacobian_transpose_times(model, d, in.e, in.tmp);
+    solve_turned(model, d, in.tmp, false);
+    d.v -= in.tmp;
+  }
+}
+
+/// v_dot <- v_dot - S^-1 alpha B^T (B v_dot + conv), repeated.
+template <class Scalar>
+void project_accelerations(const Model<Scalar>& model, Data<Scalar>& d, int iterations) {
+  auto& in = d.integrator;
+  for (int k = 0; k < iterations; ++k) {
+    jacobian_times(model, d, d.v_dot, in.e);
+    in.e += d.conv;
+    if (max_abs(in.e) <= d.settings.position_floor * (Scalar(1) + max_abs(d.v_dot))) break;
+    in.e *= in.penalty;
+    in.tmp.setZero();
+    add_jacobian_transpose_times(model, d, in.e, in.tmp);
+    solve_turned(model, d, in.tmp, false);
+    d.v_dot -= in.tmp;
+  }
+}
+
+template <class Scalar>
+Scalar correction_size(const Data<Scalar>& d) {
+  return max_abs(d.integrator.dx.cwiseProduct(d.integrator.correction_scale));
+}
+
+template <class Scalar>
+Status remember(Data<Scalar>& d, Status s) {
+  if (!s.ok()) std::snprintf(d.message.data(), d.message.size(), "%s", s.error().what().c_str());
+  return s;
+}
+
+}  // namespace detail
+
+/// Changes the step size of d (the next step refactorizes).
+template <class Scalar>
+void set_step_size(Data<Scalar>& d, Scalar h) {
+  d.settings.step = h;
+  detail::set_step_parameters(d);
+}
+
+/// Consistent initial conditions at d.t: positions onto Phi = 0 (least mass-weighted change),
+/// velocities onto B v + Phi_t = 0, then accelerations and multipliers from the equations of
+/// motion. Fails, naming the joint or body, if the joints cannot be assembled, a coordinate is
+/// not finite or an input law reads an input never set.
+template <class Scalar>
+Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iterations = 100) {
+  using detail::remember;
+  auto& in = d.integrator;
+  detail::set_step_parameters(d);
+  for (std::size_t k = 0; k < model.joints().size(); ++k) {
+    const auto& j = model.joints()[k];
+    if (j.law < 0 || !d.joint_active[k]) continue;
+    const auto& law = d.laws[static_cast<std::size_t>(j.law)];
+    if (law.kind == MotionLawKind::input && !d.input_set[static_cast<std::size_t>(law.input.index)])
+      return remember(d, make_error(ErrorCode::invalid_argument, model.describe_joint(int(k)),
+                                    ": its law reads input '",
+                                    model.inputs()[static_cast<std::size_t>(law.input.index)],
+                                    "', which was never set (set_input)"));
+  }
+  if (const int body = nonfinite_body(model, d); body >= 0)
+    return remember(d, make_error(ErrorCode::invalid_argument,
+                                  "initial conditions: ", model.describe_body(body),
+                                  " has a coordinate or velocity that is not finite"));
+  const Scalar tol = d.settings.position_floor * Scalar(10);
+  update_kinematics(model, d);
+  update_markers(model, d);
+  update_constraints(model, d);
+  Scalar violation = max_abs(d.phi);
+  // Damped Newton projection: (M + alpha B^T B) dx = -alpha B^T Phi, refactorized at every
+  // iterate, with step halving when the violation grows.
+  for (int it = 0;; ++it) {
+    if (violation <= tol) break;  // NaN falls through to the error
+    if (it >= max_iterations || !std::isfinite(static_cast<double>(violation))) {
+      int worst = 0;
+      if (d.phi.size() > 0) d.phi.cwiseAbs().maxCoeff(&worst);
+      const int joint = model.joint_of_row(worst);
+      return remember(
+          d, make_error(ErrorCode::not_converged,
+                        "initial conditions: the joints cannot be "
+                        "assembled at t = ",
+                        static_cast<double>(d.t), " (largest violation ",
+                        static_cast<double>(violation), " in ",
+                        joint >= 0 ? model.describe_joint(joint) : std::string("no joint"), ")"));
+    }
+    detail::factorize_projection(model, d);
+    in.e = -in.penalty * d.phi;
+    in.dx.setZero();
+    add_jacobian_transpose_times(model, d, in.e, in.dx);
+    in.cholesky.solve_in_place(in.dx);
+    if (!in.dx.allFinite()) {
+      violation = std::numeric_limits<Scalar>::quiet_NaN();
+      continue;
+    }
+    in.q_save = d.q;
+    for (int halving = 0;; ++halving) {
+      integrate_coordinates(model, d.q, in.dx);
+      update_kinematics(model, d);
+      update_markers(model, d);
+      update_constraints(model, d);
+      const Scalar trial = max_abs(d.phi);
+      if (trial < violation || halving == 30) {
+        violation = trial;
+        break;
+      }
+      d.q = in.q_save;
+      in.dx *= Scalar(0.5);
+    }
+  }
+  detail::factorize_projection(model, d);  // the metric at the assembled configuration
+  detail::project_velocities(model, d, max_iterations);
+  // Accelerations: (M + alpha B^T B) v_dot = Q - B^T lambda - alpha B^T conv, iterated.
+  evaluate(model, d);
+  in.iteration.setZero();
+  set_mass_blocks(model, d, in.iteration);
+  add_constraint_gram(model, d, in.penalty, in.iteration);
+  in.cholesky.compute(in.iteration);
+  detail::record_rotations(model, d);
+  in.have_factorization = false;
+  d.lambda.setZero();
+  for (int it = 0; it < max_iterations; ++it) {
+    in.e = d.lambda + in.penalty * d.conv;
+    in.r = d.force;
+    in.e = -in.e;
+    add_jacobian_transpose_times(model, d, in.e, in.r);
+    d.v_dot = in.r;
+    in.cholesky.solve_in_place(d.v_dot);
+    jacobian_times(model, d, d.v_dot, in.e);
+    in.e += d.conv;
+    d.lambda += in.penalty * in.e;
+    if (max_abs(in.e) <= tol * (Scalar(1) + max_abs(d.conv))) break;
+  }
+  d.a = d.v_dot;
+  in.has_previous = false;
+  in.converged_multipliers = 1;
+  in.revision = d.revision;
+  in.initialized = true;
+  d.message.fill('\0');
+  return Status::success();
+}
+
+/// One step of size d.settings.step. Never allocates or throws. On failure the state is left as
+/// it was before the step (except for constraint_violation, which keeps the step).
+template <class Scalar>
+StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
+  auto& in = d.integrator;
+  auto& s = d.settings;
+  // A runtime change (a joint switched): restart from the state as it is, as initialize()
+  // does; the reason a restart failed stays in d.message.
+  if (!in.initialized || d.revision != in.revision) {
+    if (!initialize(model, d).ok()) return StepStatus::constraint_violation;
+  }
+  const Scalar h = s.step;
+  in.q_n = d.q;
+  in.v_n = d.v;
+  in.vd_n = d.v_dot;
+  in.a_n = d.a;
+  const Scalar t_n = d.t;
+  in.lambda_star = d.lambda;
+  // Predictor: v_dot and lambda extrapolated linearly from the last two steps.
+  if (in.has_previous && s.extrapolate_predictor) d.v_dot = Scalar(2) * in.vd_n - in.vd_prev;
+  if (in.converged_multipliers >= 2 && s.extrapolate_multipliers)
+    in.lambda_star = Scalar(2) * d.lambda - in.lambda_prev;
+  in.a1 = ((Scalar(1) - in.alpha_f) * d.v_dot + in.alpha_f * in.vd_n - in.alpha_m * in.a_n) /
+          (Scalar(1) - in.alpha_m);
+  d.v = in.v_n + h * ((Scalar(1) - in.gamma) * in.a_n + in.gamma * in.a1);
+  in.tmp = h * (in.v_n + h * ((Scalar(0.5) - in.beta) * in.a_n + in.beta * in.a1));
+  integrate_coordinates(model, d.q, in.tmp);
+  d.t = t_n + h;
+  int it = 0;
+  bool stale_for_next = false;
+  bool converged = false, fresh = false, stale_step = false, restored = false;
+  Scalar previous = std::numeric_limits<Scalar>::infinity();
+  Scalar residual_prev = std::numeric_limits<Scalar>::infinity();
+  d.statistics.last_factorizations = 0;
+  for (; it < s.max_iterations; ++it) {
+    fresh = false;
+    evaluate(model, d, /*rates=*/false);
+    if (!in.have_factorization || !s.reuse_factorization) {
+      detail::factorize_iteration(model, d);
+      fresh = true;
+    }
+    if (it > 0 && !restored) in.lambda_star.noalias() += in.penalty * d.phi;
+    restored = false;
+    // Residual M v_dot - Q + B^T (lambda* + alpha Phi).
+    in.e = in.lambda_star + in.penalty * d.phi;
+    in.r = -d.force;
+    add_jacobian_transpose_times(model, d, in.e, in.r);
+    add_mass_times(model, d, d.v_dot, in.r);
+    const Scalar residual = in.r.norm();
+    if (stale_step && !(residual < residual_prev) && previous <= Scalar(10) * in.tol_x) {
+      detail::factorize_iteration(model, d);
+      fresh = true;
+      stale_step = false;
+    } else if (stale_step && !(residual < residual_prev)) {
+      d.q = in.q_save;
+      d.v = in.v_save;
+      d.v_dot = in.vd_save;
+      in.lambda_star = in.lambda_save;
+      in.have_factorization = false;
+      stale_step = false;
+      restored = true;
+      continue;
+    }
+    in.dx = -in.r;
+    detail::solve_turned(model, d, in.dx, fresh);
+    const Scalar size = detail::correction_size(d);
+    if (!std::isfinite(size)) break;
+    const bool stale = !fresh && it > 0 && size > s.refactor_rate * previous;
+    if (stale && it == 1 && !s.accept_at_iteration_limit) {
+      stale_for_next = true;
+    } else if (stale) {
+      detail::factorize_iteration(model, d);
+      fresh = true;
+      in.dx = -in.r;
+      detail::solve_turned(model, d, in.dx, fresh);
+    }
+    previous = detail::correction_size(d);
+    stale_step = !fresh;
+    if (stale_step) {
+      in.q_save = d.q;
+      in.v_save = d.v;
+      in.vd_save = d.v_dot;
+      in.lambda_save = in.lambda_star;
+    }
+    residual_prev = residual;
+    integrate_coordinates(model, d.q, in.dx);
+    d.v_dot.noalias() += in.beta_prime * in.dx;
+    d.v.noalias() += in.gamma_prime * in.dx;
+    if (previous <= in.tol_x && max_abs(d.phi) <= in.tol_x) {
+      converged = true;
+      ++it;
+      break;
+    }
+  }
+  d.statistics.last_iterations = it;
+  d.statistics.iterations += it;
+  const bool finite = d.v.allFinite() && d.v_dot.allFinite() && d.q.allFinite();
+  bool kept_at_limit = false;
+  if (!converged && finite && s.accept_at_iteration_limit && it >= s.max_iterations) {
+    converged = true;
+    kept_at_limit = true;
+    ++d.statistics.over_budget;
+  }
+  if (!converged || !finite) {
+    d.q = in.q_n;
+    d.v = in.v_n;
+    d.v_dot = in.vd_n;
+    d.a = in.a_n;
+    d.t = t_n;
+    in.have_factorization = false;
+    return finite ? StepStatus::newton_not_converged : StepStatus::non_finite_state;
+  }
+  if (stale_for_next) in.have_factorization = false;
+  in.lambda_prev = d.lambda;
+  d.lambda = in.lambda_star;
+  in.converged_multipliers = kept_at_limit ? 0 : std::min(in.converged_multipliers + 1, 2);
+  in.vd_prev = in.vd_n;
+  in.has_previous = true;
+  ++d.statistics.steps;
+  if (s.refresh_workspace || s.project_velocities) {
+    update_kinematics(model, d);
+    update_markers(model, d);
+    update_constraints(model, d);
+  }
+  if (s.project_velocities) {
+    detail::project_velocities(model, d, s.projection_iterations);
+    if (s.project_accelerations) {
+      update_kinematics(model, d);
+      update_markers(model, d);
+      update_constraints(model, d);
+      detail::project_accelerations(model, d, s.projection_iterations);
+    }
+  }
+  d.a = ((Scalar(1) - in.alpha_f) * d.v_dot + in.alpha_f * in.vd_n - in.alpha_m * in.a_n) /
+        (Scalar(1) - in.alpha_m);
+  if (max_abs(d.phi) > s.violation_limit) return StepStatus::constraint_violation;
+  if (s.project_velocities) {
+    jacobian_times(model, d, d.v, in.e);
+    in.e += d.phi_t;
+    if (max_abs(in.e) > s.violation_limit * (Scalar(1) + max_abs(d.v)))
+      return StepStatus::constraint_violation;
+  }
+  return StepStatus::ok;
+}
+
+}  // namespace flexstress

@@ -1,0 +1,310 @@
+// Joint equations on evaluated markers, independent of the bodies' mode counts.
+//
+// A constraint row's Jacobian on one body is b^T J summed over the marker vectors it reads
+// (dynamics/body_vector.hpp): b^T J = [b^T (points) | (u x A^T b)^T | (A^T b)^T Psi]. The first
+// six columns need only the evaluated marker (u, A); the modal columns are the weights
+// g = A^T b times the vector's mode shapes Psi. So a joint kernel writes, per row and body,
+// the six rigid columns and one weight per marker vector (RowSide), and the body's own
+// fixed-size kernel expands the weights into its modal columns. Joint kernels then compile once
+// for all mode counts, and body kernels once per count.
+//
+// Equations (Nikravesh, Computer-Aided Analysis of Mechanical Systems, ch. 7; Shabana, ch. 3):
+//   spherical 3, revolute 5, universal 4, cylindrical 4, prismatic 5, fixed 6, distance 1,
+//   prismatic driver 1 ((r_j - r_i) . z_i = s(t)), revolute driver 1 (angle x_i -> x_j about
+//   z_i = phi(t)). Each row carries phi, phi_t (explicit time derivative) and conv (the second
+//   time derivative without its B v_dot part).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "flexstress/core/types.hpp"
+#include "flexstress/dynamics/marker.hpp"
+#include "flexstress/dynamics/motion_laws.hpp"
+
+namespace flexstress {
+
+enum class JointKind : std::uint8_t {
+  spherical,
+  revolute,
+  universal,
+  cylindrical,
+  prismatic,
+  fixed,
+  distance,
+  prismatic_driver,
+  revolute_driver,
+};
+
+inline const char* to_string(JointKind k) {
+  switch (k) {
+    case JointKind::spherical: return "spherical";
+    case JointKind::revolute: return "revolute";
+    case JointKind::universal: return "universal";
+    case JointKind::cylindrical: return "cylindrical";
+    case JointKind::prismatic: return "prismatic";
+    case JointKind::fixed: return "fixed";
+    case JointKind::distance: return "distance";
+    case JointKind::prismatic_driver: return "prismatic driver";
+    case JointKind::revolute_driver: return "revolute driver";
+  }
+  return "unknown";
+}
+
+/// Equations of a joint kind.
+constexpr int joint_equations(JointKind k) {
+  switch (k) {
+    case JointKind::spherical: return 3;
+    case JointKind::revolute: return 5;
+    case JointKind::universal: return 4;
+    case JointKind::cylindrical: return 4;
+    case JointKind::prismatic: return 5;
+    case JointKind::fixed: return 6;
+    case JointKind::distance: return 1;
+    case JointKind::prismatic_driver: return 1;
+    case JointKind::revolute_driver: return 1;
+  }
+  return 0;
+}
+inline constexpr int max_joint_equations = 6;
+
+/// Whether the kind has a motion law (a driver).
+constexpr bool is_driver(JointKind k) {
+  return k == JointKind::prismatic_driver || k == JointKind::revolute_driver;
+}
+
+/// Marker parts (MarkerParts bits) a kind reads on marker i and on marker j: only those are
+/// evaluated.
+constexpr unsigned joint_parts_i(JointKind k) {
+  using P = MarkerParts;
+  switch (k) {
+    case JointKind::spherical: return P::origin;
+    case JointKind::revolute: return P::origin | P::z;
+    case JointKind::universal: return P::origin | P::z;
+    case JointKind::cylindrical: return P::all;
+    case JointKind::prismatic: return P::all;
+    case JointKind::fixed: return P::origin | P::x | P::z;
+    case JointKind::distance: return P::origin;
+    case JointKind::prismatic_driver: return P::origin | P::z;
+    case JointKind::revolute_driver: return P::x | P::y;
+  }
+  return P::all;
+}
+constexpr unsigned joint_parts_j(JointKind k) {
+  using P = MarkerParts;
+  switch (k) {
+    case JointKind::spherical: return P::origin;
+    case JointKind::revolute: return P::origin | P::x | P::y;
+    case JointKind::universal: return P::origin | P::z;
+    case JointKind::cylindrical: return P::origin | P::x | P::y;
+    case JointKind::prismatic: return P::origin | P::x | P::y;
+    case JointKind::fixed: return P::origin | P::x | P::y;
+    case JointKind::distance: return P::origin;
+    case JointKind::prismatic_driver: return P::origin;
+    case JointKind::revolute_driver: return P::x;
+  }
+  return P::all;
+}
+
+/// A marker evaluated on its body: its four vectors and the body's rotation A.
+template <class Scalar>
+struct MarkerState {
+  VectorEval<Scalar> origin, x, y, z;
+  Mat3<Scalar> rotation = Mat3<Scalar>::Identity();
+  const VectorEval<Scalar>& axis(int a) const { return a == 0 ? x : a == 1 ? y : z; }
+};
+
+/// One row's Jacobian on one body: six rigid columns and the weights of the modal columns,
+/// g_v per marker vector v (origin, x, y, z), in the body frame.
+template <class Scalar>
+struct RowSide {
+  Eigen::Matrix<Scalar, 1, 6> rigid = Eigen::Matrix<Scalar, 1, 6>::Zero();
+  std::array<Vec3<Scalar>, 4> weight{Vec3<Scalar>::Zero(), Vec3<Scalar>::Zero(),
+                                     Vec3<Scalar>::Zero(), Vec3<Scalar>::Zero()};
+
+  /// += s b^T J_origin (the origin is a point).
+  void add_origin(const MarkerState<Scalar>& m, const Vec3<Scalar>& b, Scalar s = Scalar(1)) {
+    const Vec3<Scalar> bb = s * (m.rotation.transpose() * b);
+    rigid.template head<3>() += s * b.transpose();
+    rigid.template tail<3>() += m.origin.local.cross(bb).transpose();
+    weight[0] += bb;
+  }
+  /// += s b^T J_axis(a) (a direction: no translation column).
+  void add_axis(const MarkerState<Scalar>& m, int a, const Vec3<Scalar>& b, Scalar s = Scalar(1)) {
+    const Vec3<Scalar> bb = s * (m.rotation.transpose() * b);
+    rigid.template tail<3>() += m.axis(a).local.cross(bb).transpose();
+    weight[static_cast<std::size_t>(1 + a)] += bb;
+  }
+  /// The row of a s + b t (for combining rows).
+  static RowSide combine(Scalar s, const RowSide& a, Scalar t, const RowSide& b) {
+    RowSide r;
+    r.rigid = s * a.rigid + t * b.rigid;
+    for (std::size_t k = 0; k < 4; ++k) r.weight[k] = s * a.weight[k] + t * b.weight[k];
+    return r;
+  }
+};
+
+/// The rows of one joint.
+template <class Scalar>
+struct JointRows {
+  int count = 0;
+  std::array<Scalar, max_joint_equations> phi{}, phi_t{}, conv{};
+  std::array<RowSide<Scalar>, max_joint_equations> i{}, j{};
+
+  void reset(int n) {
+    count = n;
+    for (int r = 0; r < n; ++r) {
+      const auto k = static_cast<std::size_t>(r);
+      phi[k] = phi_t[k] = conv[k] = Scalar(0);
+      i[k] = RowSide<Scalar>();
+      j[k] = RowSide<Scalar>();
+    }
+  }
+};
+
+namespace joint_rows {
+
+template <class Scalar>
+using Rows = JointRows<Scalar>;
+
+/// a_i . b_j = 0 (dot-1).
+template <class Scalar>
+void perpendicular(const MarkerState<Scalar>& mi, int ai, const MarkerState<Scalar>& mj, int aj,
+                   Rows<Scalar>& out, int r) {
+  const auto k = static_cast<std::size_t>(r);
+  const auto& a = mi.axis(ai);
+  const auto& b = mj.axis(aj);
+  out.phi[k] = a.value.dot(b.value);
+  out.i[k].add_axis(mi, ai, b.value);
+  out.j[k].add_axis(mj, aj, a.value);
+  out.conv[k] = a.convective.dot(b.value) + Scalar(2) * a.velocity.dot(b.velocity) +
+                a.value.dot(b.convective);
+}
+
+/// a_i . (r_j - r_i) = 0 (dot-2).
+template <class Scalar>
+void in_plane(const MarkerState<Scalar>& mi, int ai, const MarkerState<Scalar>& mj,
+              Rows<Scalar>& out, int r) {
+  const auto k = static_cast<std::size_t>(r);
+  const auto& a = mi.axis(ai);
+  const Vec3<Scalar> d = mj.origin.value - mi.origin.value;
+  const Vec3<Scalar> d_dot = mj.origin.velocity - mi.origin.velocity;
+  out.phi[k] = a.value.dot(d);
+  out.i[k].add_axis(mi, ai, d);
+  out.i[k].add_origin(mi, a.value, Scalar(-1));
+  out.j[k].add_origin(mj, a.value);
+  out.conv[k] = a.convective.dot(d) + Scalar(2) * a.velocity.dot(d_dot) +
+                a.value.dot(Vec3<Scalar>(mj.origin.convective - mi.origin.convective));
+}
+
+/// Component c of r_j - r_i = 0.
+template <class Scalar>
+void coincident(const MarkerState<Scalar>& mi, const MarkerState<Scalar>& mj, int c,
+                Rows<Scalar>& out, int r) {
+  const auto k = static_cast<std::size_t>(r);
+  const Vec3<Scalar> e = Vec3<Scalar>::Unit(c);
+  out.phi[k] = mj.origin.value(c) - mi.origin.value(c);
+  out.i[k].add_origin(mi, e, Scalar(-1));
+  out.j[k].add_origin(mj, e);
+  out.conv[k] = mj.origin.convective(c) - mi.origin.convective(c);
+}
+
+/// |r_j - r_i|^2 - L^2 = 0.
+template <class Scalar>
+void distance(const MarkerState<Scalar>& mi, const MarkerState<Scalar>& mj, Scalar length,
+              Rows<Scalar>& out, int r) {
+  const auto k = static_cast<std::size_t>(r);
+  const Vec3<Scalar> d = mj.origin.value - mi.origin.value;
+  const Vec3<Scalar> d_dot = mj.origin.velocity - mi.origin.velocity;
+  out.phi[k] = d.squaredNorm() - length * length;
+  out.i[k].add_origin(mi, d, Scalar(-2));
+  out.j[k].add_origin(mj, d, Scalar(2));
+  out.conv[k] = Scalar(2) * d_dot.squaredNorm() +
+                Scalar(2) * d.dot(Vec3<Scalar>(mj.origin.convective - mi.origin.convective));
+}
+
+/// Rate of a_i . b_j.
+template <class Scalar>
+Scalar perpendicular_rate(const MarkerState<Scalar>& mi, int ai, const MarkerState<Scalar>& mj,
+                          int aj) {
+  return mi.axis(ai).velocity.dot(mj.axis(aj).value) + mi.axis(ai).value.dot(mj.axis(aj).velocity);
+}
+
+}  // namespace joint_rows
+
+/// The rows of a joint of kind `kind` between evaluated markers i and j at time t. `length` is
+/// a distance joint's; `law` a driver's prescribed motion at t.
+template <class Scalar>
+void evaluate_joint_rows(JointKind kind, const MarkerState<Scalar>& i, const MarkerState<Scalar>& j,
+                         Scalar length, const MotionValue<Scalar>& law, JointRows<Scalar>& out) {
+  namespace jr = joint_rows;
+  out.reset(joint_equations(kind));
+  switch (kind) {
+    case JointKind::spherical:
+      for (int c = 0; c < 3; ++c) jr::coincident(i, j, c, out, c);
+      return;
+    case JointKind::revolute:
+      for (int c = 0; c < 3; ++c) jr::coincident(i, j, c, out, c);
+      jr::perpendicular(i, 2, j, 0, out, 3);
+      jr::perpendicular(i, 2, j, 1, out, 4);
+      return;
+    case JointKind::universal:
+      for (int c = 0; c < 3; ++c) jr::coincident(i, j, c, out, c);
+      jr::perpendicular(i, 2, j, 2, out, 3);
+      return;
+    case JointKind::cylindrical:
+      jr::in_plane(i, 0, j, out, 0);
+      jr::in_plane(i, 1, j, out, 1);
+      jr::perpendicular(i, 2, j, 0, out, 2);
+      jr::perpendicular(i, 2, j, 1, out, 3);
+      return;
+    case JointKind::prismatic:
+      jr::in_plane(i, 0, j, out, 0);
+      jr::in_plane(i, 1, j, out, 1);
+      jr::perpendicular(i, 2, j, 0, out, 2);
+      jr::perpendicular(i, 2, j, 1, out, 3);
+      jr::perpendicular(i, 0, j, 1, out, 4);
+      return;
+    case JointKind::fixed:
+      for (int c = 0; c < 3; ++c) jr::coincident(i, j, c, out, c);
+      jr::perpendicular(i, 2, j, 0, out, 3);
+      jr::perpendicular(i, 2, j, 1, out, 4);
+      jr::perpendicular(i, 0, j, 1, out, 5);
+      return;
+    case JointKind::distance: jr::distance(i, j, length, out, 0); return;
+    case JointKind::prismatic_driver:
+      jr::in_plane(i, 2, j, out, 0);
+      out.phi[0] -= law.value;
+      out.phi_t[0] = -law.rate;
+      out.conv[0] -= law.acceleration;
+      return;
+    case JointKind::revolute_driver: {
+      // sin(phi) (x_i . x_j) - cos(phi) (y_i . x_j) = 0.
+      using std::cos;
+      using std::sin;
+      const Scalar s = sin(law.value), c = cos(law.value);
+      const Scalar sd = c * law.rate, cd = -s * law.rate;
+      const Scalar sdd = -s * law.rate * law.rate + c * law.acceleration;
+      const Scalar cdd = -c * law.rate * law.rate - s * law.acceleration;
+      JointRows<Scalar> ab;
+      ab.reset(2);
+      jr::perpendicular(i, 0, j, 0, ab, 0);  // x_i . x_j = cos(phi) when met
+      jr::perpendicular(i, 1, j, 0, ab, 1);  // y_i . x_j = sin(phi)
+      const Scalar a_dot = jr::perpendicular_rate(i, 0, j, 0);
+      const Scalar b_dot = jr::perpendicular_rate(i, 1, j, 0);
+      out.phi[0] = s * ab.phi[0] - c * ab.phi[1];
+      out.i[0] = RowSide<Scalar>::combine(s, ab.i[0], -c, ab.i[1]);
+      out.j[0] = RowSide<Scalar>::combine(s, ab.j[0], -c, ab.j[1]);
+      out.phi_t[0] = sd * ab.phi[0] - cd * ab.phi[1];
+      out.conv[0] = sdd * ab.phi[0] + Scalar(2) * sd * a_dot + s * ab.conv[0] - cdd * ab.phi[1] -
+                    Scalar(2) * cd * b_dot - c * ab.conv[1];
+      return;
+    }
+  }
+}
+
+}  // namespace flexstress

@@ -1,0 +1,446 @@
+// Builds a Model at run time and returns typed handles to its parts.
+//
+//   ModelBuilder<double> b;
+//   BodyId boom = b.add_flexible_body("boom", boom_data, 10);
+//   MarkerId a_boom = b.add_marker("A on boom", boom, node_a);
+//   MarkerId a_ground = b.add_marker("A on ground", b.ground(), -1, Vector3d::Zero());
+//   JointId a = b.add_joint("A", JointKind::revolute, a_ground, a_boom);
+//   Result<Model<double>> model = b.finalize();  // every check, with the part's name
+//
+// A mistake (a node the body does not have, a mode count the data lacks, a law that is not
+// finite, a joint between markers of one body) is recorded with the part's name and returned
+// by finalize(), so building code reads straight through.
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/status.hpp"
+#include "flexstress/core/types.hpp"
+#include "flexstress/model/body_kernels.hpp"
+#include "flexstress/model/model.hpp"
+#include "flexstress/reduction/modal_body_data.hpp"
+
+#ifndef FLEXSTRESS_MODE_COUNTS
+/// Mode counts whose body kernels are compiled with a fixed size (unrolled, vectorized); any
+/// other count runs the bounded-size kernels. A build choice: each count costs compile time.
+#define FLEXSTRESS_MODE_COUNTS 10, 16
+#endif
+
+namespace flexstress {
+
+namespace detail {
+
+template <class Scalar, int N>
+std::pair<std::shared_ptr<void>, const BodyKernels<Scalar>*> make_holder(BodyModel<Scalar, N> b) {
+  auto h = std::make_shared<BodyHolder<Scalar, N>>();
+  h->body = std::move(b);
+  return {h, &body_kernels<Scalar, N>()};
+}
+
+template <class Scalar, int N>
+void adopt_flexible(const reduction::ModalBodyData& data, int modes, bool& done,
+                    std::shared_ptr<void>& holder, const BodyKernels<Scalar>*& kernels,
+                    Error& error) {
+  if (done || modes != N) return;
+  done = true;
+  auto b = BodyModel<Scalar, N>::from_modal_data(data, N);
+  if (!b) {
+    error = b.error();
+    return;
+  }
+  std::tie(holder, kernels) = make_holder<Scalar, N>(std::move(*b));
+}
+
+}  // namespace detail
+
+template <class Scalar>
+class ModelBuilder {
+ public:
+  using ModelType = Model<Scalar>;
+
+  /// The ground (fixed): markers on it take node -1 and an offset (the position).
+  BodyId ground() const { return BodyId{-1}; }
+
+  /// A rigid body: mass, centre of mass and inertia about the centre of mass (body frame), its
+  /// frame starting at `position` with `orientation`.
+  BodyId add_rigid_body(const std::string& name, Scalar mass, const Vec3<Scalar>& center_of_mass,
+                        const Mat3<Scalar>& inertia_about_com) {
+    Pending p;
+    p.body.name = name;
+    if (!(mass > Scalar(0)) || !center_of_mass.allFinite() || !inertia_about_com.allFinite())
+      fail(ErrorCode::invalid_argument, "body '", name,
+           "': a rigid body needs a positive mass and a finite centre of mass and inertia");
+    std::tie(p.holder, p.body.kernels) = detail::make_holder<Scalar, 0>(
+        BodyModel<Scalar, 0>::rigid(mass, center_of_mass, inertia_about_com));
+    return push(std::move(p));
+  }
+
+  /// A flexible body from reduced FE data keeping its lowest `modes` deformation modes (any
+  /// count the data has, up to max_runtime_modes). Modal damping follows the data's damping
+  /// ratios (set_damping_ratio changes them).
+  BodyId add_flexible_body(const std::string& name, const reduction::ModalBodyData& data,
+                           int modes) {
+    Pending p;
+    p.body.name = name;
+    if (modes < 0 || modes > data.num_modes) {
+      fail(ErrorCode::size_mismatch, "body '", name, "': ", modes, " modes asked, the data has ",
+           data.num_modes);
+      modes = 0;
+    }
+    bool done = false;
+    Error error;
+    error.message.clear();
+    adopt_compiled(data, modes, done, p, error,
+                   std::integer_sequence<int, FLEXSTRESS_MODE_COUNTS>{});
+    if (!done) {
+      auto b = BodyModel<Scalar, Eigen::Dynamic>::from_modal_data(data, modes);
+      if (b)
+        std::tie(p.holder, p.body.kernels) =
+            detail::make_holder<Scalar, Eigen::Dynamic>(std::move(*b));
+      else
+        error = b.error();
+    }
+    if (!error.message.empty()) fail(error.code, "body '", name, "': ", error.message);
+    return push(std::move(p));
+  }
+
+  /// Sets the modal damping ratio of every mode of a flexible body.
+  void set_damping_ratio(BodyId b, Scalar zeta) { body_entry(b, "set_damping_ratio").zeta = zeta; }
+  /// Where a body's frame starts (the ground frame by default).
+  void set_initial_pose(
+      BodyId b, const Vec3<Scalar>& position,
+      const EulerParameters<Scalar>& orientation = identity_euler_parameters<Scalar>()) {
+    auto& e = body_entry(b, "set_initial_pose");
+    e.body.initial_position = position;
+    e.body.initial_orientation = orientation;
+  }
+
+  /// A marker on `body` at `node` (-1: the body frame; on the ground, the ground frame) with a
+  /// rigid offset and axes (columns: marker axes in the body frame).
+  MarkerId add_marker(const std::string& name, BodyId body, Index node,
+                      const Vec3<Scalar>& offset = Vec3<Scalar>::Zero(),
+                      const Mat3<Scalar>& axes = Mat3<Scalar>::Identity()) {
+    typename ModelType::Marker m;
+    m.name = name;
+    m.body = body.index;
+    if (!offset.allFinite() || !axes.allFinite()) {
+      fail(ErrorCode::invalid_argument, "marker '", name, "': offset or axes not finite");
+    } else if (body.index < -1 || body.index >= static_cast<int>(bodies_.size())) {
+      fail(ErrorCode::invalid_argument, "marker '", name, "': no body with index ", body.index);
+    } else if (body.index < 0) {
+      if (node != -1)
+        fail(ErrorCode::invalid_argument, "marker '", name,
+             "': a ground marker has no node (use -1 and the offset)");
+      m.local = static_cast<int>(ground_.size());
+      MarkerState<Scalar> g;
+      const auto set = [](VectorEval<Scalar>& e, const Vec3<Scalar>& value) {
+        e.value = e.local = value;
+        e.velocity.setZero();
+        e.convective.setZero();
+      };
+      set(g.origin, offset);
+      set(g.x, axes.col(0));
+      set(g.y, axes.col(1));
+      set(g.z, axes.col(2));
+      ground_.push_back(g);
+    } else {
+      Pending& p = bodies_[static_cast<std::size_t>(body.index)];
+      m.local = p.holder ? p.add_marker(p.holder.get(), node, offset, axes) : -1;
+      if (m.local < 0 && p.holder)
+        fail(ErrorCode::invalid_mesh, "marker '", name, "': body '", p.body.name, "' has no node ",
+             node);
+    }
+    markers_.push_back(std::move(m));
+    return MarkerId{static_cast<int>(markers_.size()) - 1};
+  }
+
+  /// A joint of `kind` between marker i and marker j (on different bodies). Drivers take a law
+  /// (add_driver); a distance joint its length (add_distance).
+  JointId add_joint(const std::string& name, JointKind kind, MarkerId i, MarkerId j) {
+    typename ModelType::Joint jt;
+    jt.name = name;
+    jt.kind = kind;
+    jt.marker_i = i.index;
+    jt.marker_j = j.index;
+    if (is_driver(kind))
+      fail(ErrorCode::invalid_argument, "joint '", name, "': a ", to_string(kind),
+           " needs a motion law (add_driver)");
+    joints_.push_back(std::move(jt));
+    return JointId{static_cast<int>(joints_.size()) - 1};
+  }
+  /// |r_j - r_i| = length.
+  JointId add_distance(const std::string& name, MarkerId i, MarkerId j, Scalar length) {
+    const JointId id = add_joint(name, JointKind::distance, i, j);
+    joints_.back().length = length;
+    if (!(length > Scalar(0)) || !std::isfinite(double(length)))
+      fail(ErrorCode::invalid_argument, "joint '", name, "': distance ", double(length),
+           " must be positive and finite");
+    return id;
+  }
+  /// A driver: prismatic ((r_j - r_i) . z_i = s(t), with a prismatic or cylindrical joint) or
+  /// revolute (the angle from x_i to x_j about z_i = phi(t), with a revolute joint).
+  JointId add_driver(const std::string& name, JointKind kind, MarkerId i, MarkerId j,
+                     MotionLaw<Scalar> law) {
+    typename ModelType::Joint jt;
+    jt.name = name;
+    jt.kind = kind;
+    jt.marker_i = i.index;
+    jt.marker_j = j.index;
+    if (!is_driver(kind))
+      fail(ErrorCode::invalid_argument, "joint '", name, "': ", to_string(kind),
+           " is not a driver kind");
+    jt.law = static_cast<int>(laws_.size());
+    laws_.push_back(std::move(law));
+    joints_.push_back(std::move(jt));
+    return JointId{static_cast<int>(joints_.size()) - 1};
+  }
+
+  /// A spring-damper between the origins of two markers.
+  ForceId add_spring_damper(const std::string& name, MarkerId i, MarkerId j,
+                            const SpringDamperParams<Scalar>& params) {
+    typename ModelType::Force f;
+    f.name = name;
+    f.marker_i = i.index;
+    f.marker_j = j.index;
+    f.params = params;
+    if (!std::isfinite(double(params.stiffness)) || !std::isfinite(double(params.damping)) ||
+        !std::isfinite(double(params.rest_length)) || !std::isfinite(double(params.preload)))
+      fail(ErrorCode::invalid_argument, "force '", name,
+           "': stiffness, damping, rest_length and preload must be finite");
+    forces_.push_back(std::move(f));
+    return ForceId{static_cast<int>(forces_.size()) - 1};
+  }
+
+  /// A value set before each step (set_input), for MotionLaw::from_input.
+  InputId add_input(const std::string& name) {
+    inputs_.push_back(name);
+    return InputId{static_cast<int>(inputs_.size()) - 1};
+  }
+
+  /// Uniform gravity (global frame); without a call there is none.
+  void set_gravity(const Vec3<Scalar>& g) {
+    if (!g.allFinite()) fail(ErrorCode::invalid_argument, "gravity is not finite");
+    gravity_ = g;
+    has_gravity_ = true;
+  }
+  /// Leaves out the quadratic velocity vector (centrifugal, Coriolis and gyroscopic terms): an
+  /// approximation, stated as one. Exact only for motions slow enough that they do not matter.
+  void approximate_without_quadratic_velocity() { quadratic_velocity_ = false; }
+
+  /// Integrator settings every Data of the model starts with.
+  ImplicitSettings<Scalar>& settings() { return settings_; }
+
+  /// Checks the model and builds it; the error names the first part that is wrong.
+  Result<ModelType> finalize() const {
+    if (!first_error_.message.empty()) return first_error_;
+    if (bodies_.empty()) return make_error(ErrorCode::invalid_argument, "a model needs a body");
+    ModelType m;
+    const auto steps = settings_;
+    if (!(steps.step > Scalar(0)) || !(steps.spectral_radius >= Scalar(0)) ||
+        !(steps.spectral_radius <= Scalar(1)) || steps.max_iterations < 1)
+      return make_error(ErrorCode::invalid_argument,
+                        "settings: the step must be positive, the spectral radius in [0, 1] and "
+                        "max_iterations at least 1");
+    m.settings_ = steps;
+    m.gravity_ = gravity_;
+    m.has_gravity_ = has_gravity_;
+    m.quadratic_velocity_ = quadratic_velocity_;
+    m.inputs_ = inputs_;
+    // Bodies: offsets, effects, copies of the holders (a Model owns its bodies; builders may
+    // go on adding to theirs).
+    int nv = 0, nq = 0, mass = 0;
+    for (const Pending& p : bodies_) {
+      typename ModelType::Body b = p.body;
+      b.holder = p.clone(p.holder.get(), p.zeta, b.displacement_scale, b.max_frequency, b.modes);
+      b.nv = 6 + b.modes;
+      b.v_offset = nv;
+      b.q_offset = nq;
+      b.mass_offset = mass;
+      nv += b.nv;
+      nq += 7 + b.modes;
+      mass += b.nv * b.nv;
+      b.effects.gravity = has_gravity_;
+      b.effects.quadratic_velocity = quadratic_velocity_;
+      b.effects.modal_damping = b.modes > 0 && p.zeta_any(p.holder.get(), p.zeta);
+      m.bodies_.push_back(std::move(b));
+    }
+    m.nv_ = nv;
+    m.nq_ = nq;
+    m.mass_size_ = mass;
+    // Marker slots: each body's markers together (its kernel evaluates them in one call), then
+    // the ground's.
+    m.markers_ = markers_;
+    std::vector<int> count(bodies_.size(), 0);
+    for (const auto& mk : markers_)
+      if (mk.body >= 0) ++count[static_cast<std::size_t>(mk.body)];
+    int slot = 0;
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      m.bodies_[b].first_slot = slot;
+      m.bodies_[b].num_markers = count[b];
+      slot += count[b];
+    }
+    for (auto& mk : m.markers_)
+      mk.slot = mk.body >= 0 ? m.bodies_[static_cast<std::size_t>(mk.body)].first_slot + mk.local
+                             : slot + mk.local;
+    m.slot_parts_.assign(static_cast<std::size_t>(slot) + ground_.size(), 0u);
+    m.ground_markers_ = ground_;
+    for (std::size_t g = 0; g < ground_.size(); ++g)
+      m.ground_marker_slots_.push_back(slot + static_cast<int>(g));
+    const auto marker_ok = [&](int id) {
+      return id >= 0 && id < static_cast<int>(markers_.size());
+    };
+    // Joints: rows, Jacobian blocks, the marker parts they read.
+    int row = 0, jac = 0;
+    m.pattern_.block_sizes.clear();
+    for (const auto& b : m.bodies_) m.pattern_.block_sizes.push_back(b.nv);
+    for (const auto& src : joints_) {
+      typename ModelType::Joint j = src;
+      if (!marker_ok(j.marker_i) || !marker_ok(j.marker_j))
+        return make_error(ErrorCode::invalid_argument, "joint '", j.name,
+                          "': a marker handle is not of this model");
+      j.body_i = markers_[static_cast<std::size_t>(j.marker_i)].body;
+      j.body_j = markers_[static_cast<std::size_t>(j.marker_j)].body;
+      if (j.body_i == j.body_j)
+        return make_error(ErrorCode::invalid_argument, "joint '", j.name, "': both markers are on ",
+                          m.describe_body(j.body_i));
+      j.equations = joint_equations(j.kind);
+      j.row = row;
+      row += j.equations;
+      if (j.body_i >= 0) {
+        j.jac_i = jac;
+        jac += j.equations * m.bodies_[static_cast<std::size_t>(j.body_i)].nv;
+      }
+      if (j.body_j >= 0) {
+        j.jac_j = jac;
+        jac += j.equations * m.bodies_[static_cast<std::size_t>(j.body_j)].nv;
+      }
+      if (j.body_i >= 0 && j.body_j >= 0) m.pattern_.couplings.emplace_back(j.body_i, j.body_j);
+      m.slot_parts_[static_cast<std::size_t>(
+          m.markers_[static_cast<std::size_t>(j.marker_i)].slot)] |= joint_parts_i(j.kind);
+      m.slot_parts_[static_cast<std::size_t>(
+          m.markers_[static_cast<std::size_t>(j.marker_j)].slot)] |= joint_parts_j(j.kind);
+      if (j.law >= 0)
+        if (const char* bad =
+                laws_[static_cast<std::size_t>(j.law)].check(static_cast<int>(inputs_.size())))
+          return make_error(ErrorCode::invalid_argument, "joint '", j.name, "': ", bad);
+      m.joints_.push_back(std::move(j));
+    }
+    m.nc_ = row;
+    m.jacobian_size_ = jac;
+    for (const auto& src : forces_) {
+      typename ModelType::Force f = src;
+      if (!marker_ok(f.marker_i) || !marker_ok(f.marker_j))
+        return make_error(ErrorCode::invalid_argument, "force '", f.name,
+                          "': a marker handle is not of this model");
+      f.body_i = markers_[static_cast<std::size_t>(f.marker_i)].body;
+      f.body_j = markers_[static_cast<std::size_t>(f.marker_j)].body;
+      for (int mk : {f.marker_i, f.marker_j})
+        m.slot_parts_[static_cast<std::size_t>(m.markers_[static_cast<std::size_t>(mk)].slot)] |=
+            MarkerParts::origin | marker_needs_rates;
+      m.forces_.push_back(std::move(f));
+    }
+    m.laws_ = laws_;
+    return m;
+  }
+
+ private:
+  struct Pending {
+    typename ModelType::Body body;
+    std::shared_ptr<void> holder;
+    int (*add_marker)(void*, Index, const Vec3<Scalar>&, const Mat3<Scalar>&) = nullptr;
+    /// Copies the holder with damping ratio zeta (if set) and reads its mode data.
+    std::shared_ptr<const void> (*clone)(const void*, const std::optional<Scalar>&,
+                                         std::vector<Scalar>&, Scalar&, int&) = nullptr;
+    bool (*zeta_any)(const void*, const std::optional<Scalar>&) = nullptr;
+    std::optional<Scalar> zeta;
+  };
+
+  template <class... Parts>
+  void fail(ErrorCode code, const Parts&... parts) {
+    if (first_error_.message.empty()) first_error_ = make_error(code, parts...);
+  }
+
+  Pending& body_entry(BodyId b, const char* what) {
+    if (b.index < 0 || b.index >= static_cast<int>(bodies_.size())) {
+      fail(ErrorCode::invalid_argument, what, ": no body with index ", b.index);
+      return scratch_;
+    }
+    return bodies_[static_cast<std::size_t>(b.index)];
+  }
+
+  template <int N>
+  static std::shared_ptr<const void> clone_holder(const void* h, const std::optional<Scalar>& zeta,
+                                                  std::vector<Scalar>& scale, Scalar& max_frequency,
+                                                  int& modes) {
+    auto copy =
+        std::make_shared<BodyHolder<Scalar, N>>(*static_cast<const BodyHolder<Scalar, N>*>(h));
+    if (zeta) copy->body.set_damping_ratio(*zeta);
+    modes = copy->body.modes();
+    const auto& s = copy->body.modal_displacement_scale();
+    scale.assign(s.data(), s.data() + s.size());
+    max_frequency = copy->body.max_frequency();
+    return copy;
+  }
+  template <int N>
+  static bool any_damping(const void* h, const std::optional<Scalar>& zeta) {
+    if (zeta) return *zeta != Scalar(0);
+    return !static_cast<const BodyHolder<Scalar, N>*>(h)->body.modal_damping().isZero(0);
+  }
+
+  template <int N>
+  static void set_functions(Pending& p) {
+    p.add_marker = &detail::BodyKernelImpl<Scalar, N>::add_marker;
+    p.clone = &clone_holder<N>;
+    p.zeta_any = &any_damping<N>;
+  }
+  template <int... Ns>
+  static void set_functions_for(int modes, Pending& p, std::integer_sequence<int, Ns...>) {
+    bool done = false;
+    ((!done && modes == Ns ? (set_functions<Ns>(p), done = true) : false), ...);
+    if (!done) set_functions<Eigen::Dynamic>(p);
+  }
+
+  template <int... Ns>
+  static void adopt_compiled(const reduction::ModalBodyData& data, int modes, bool& done,
+                             Pending& p, Error& error, std::integer_sequence<int, Ns...>) {
+    (detail::adopt_flexible<Scalar, Ns>(data, modes, done, p.holder, p.body.kernels, error), ...);
+  }
+
+  BodyId push(Pending p) {
+    if (p.body.kernels != nullptr) {
+      const int n = p.body.kernels->fixed_modes;
+      if (n == 0)
+        set_functions<0>(p);
+      else if (n == Eigen::Dynamic)
+        set_functions<Eigen::Dynamic>(p);
+      else
+        set_functions_for(n, p, std::integer_sequence<int, FLEXSTRESS_MODE_COUNTS>{});
+    }
+    bodies_.push_back(std::move(p));
+    return BodyId{static_cast<int>(bodies_.size()) - 1};
+  }
+
+  std::vector<Pending> bodies_;
+  Pending scratch_;
+  std::vector<typename ModelType::Marker> markers_;
+  std::vector<MarkerState<Scalar>> ground_;
+  std::vector<typename ModelType::Joint> joints_;
+  std::vector<typename ModelType::Force> forces_;
+  std::vector<std::string> inputs_;
+  std::vector<MotionLaw<Scalar>> laws_;
+  Vec3<Scalar> gravity_ = Vec3<Scalar>::Zero();
+  bool has_gravity_ = false;
+  bool quadratic_velocity_ = true;
+  ImplicitSettings<Scalar> settings_;
+  Error first_error_{ErrorCode::invalid_argument, std::string()};
+};
+
+}  // namespace flexstress

@@ -1,0 +1,265 @@
+// The stages of an evaluation over (model, data), in the order a step runs them:
+// kinematics (rotations) -> markers -> constraints (Phi, B, rates) -> dynamics (mass blocks,
+// applied forces); and the block operations the integrator builds on (M x, B x, B^T x,
+// B^T B, the modal stiffness and damping). Each body's work goes through the kernels compiled
+// for its mode count (model/body_kernels.hpp); nothing here allocates.
+#pragma once
+
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/euler_parameters.hpp"
+#include "flexstress/core/types.hpp"
+#include "flexstress/model/data.hpp"
+#include "flexstress/model/joint_rows.hpp"
+#include "flexstress/model/model.hpp"
+
+namespace flexstress {
+
+namespace detail {
+
+template <class Scalar>
+using ColBlock =
+    Eigen::Map<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>, 0, Eigen::OuterStride<>>;
+template <class Scalar>
+using ConstColBlock = Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>>;
+
+}  // namespace detail
+
+/// Stage 1: each body's rotation matrix A(theta).
+template <class Scalar>
+void update_kinematics(const Model<Scalar>& model, Data<Scalar>& d) {
+  const auto& bodies = model.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    d.rotation[b] = rotation_matrix<Scalar>(d.q.template segment<4>(bodies[b].q_offset + 3));
+}
+
+/// Stage 2: the markers joints and forces read (call update_kinematics first). Without rates
+/// only positions and axes are evaluated (a Newton iterate needs Phi and B), except on markers
+/// of force elements, whose damping reads velocities.
+template <class Scalar>
+void update_markers(const Model<Scalar>& model, Data<Scalar>& d, bool rates = true) {
+  const auto& bodies = model.bodies();
+  const unsigned* parts = model.slot_parts().data();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const auto& body = bodies[b];
+    if (body.num_markers == 0) continue;
+    body.kernels->markers(body.holder.get(), d.q.data() + body.q_offset, d.v.data() + body.v_offset,
+                          d.rotation[b], rates, parts + body.first_slot,
+                          d.markers.data() + body.first_slot);
+  }
+}
+
+/// Stage 3: constraint values, Jacobian blocks, phi_t and conv at d.t (markers up to date).
+/// An inactive joint's rows read 0 = 0.
+template <class Scalar>
+void update_constraints(const Model<Scalar>& model, Data<Scalar>& d) {
+  JointRows<Scalar> rows;
+  const auto& joints = model.joints();
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    const auto& j = joints[k];
+    const int n = j.equations;
+    const auto& bodies = model.bodies();
+    if (!d.joint_active[k]) {
+      d.phi.segment(j.row, n).setZero();
+      d.phi_t.segment(j.row, n).setZero();
+      d.conv.segment(j.row, n).setZero();
+      if (j.body_i >= 0)
+        d.jacobian.segment(j.jac_i, n * bodies[static_cast<std::size_t>(j.body_i)].nv).setZero();
+      if (j.body_j >= 0)
+        d.jacobian.segment(j.jac_j, n * bodies[static_cast<std::size_t>(j.body_j)].nv).setZero();
+      continue;
+    }
+    const auto& mi = model.markers()[static_cast<std::size_t>(j.marker_i)];
+    const auto& mj = model.markers()[static_cast<std::size_t>(j.marker_j)];
+    const MotionValue<Scalar> law =
+        j.law >= 0 ? d.laws[static_cast<std::size_t>(j.law)](d.t, d.inputs.data())
+                   : MotionValue<Scalar>();
+    evaluate_joint_rows(j.kind, d.markers[static_cast<std::size_t>(mi.slot)],
+                        d.markers[static_cast<std::size_t>(mj.slot)], j.length, law, rows);
+    for (int r = 0; r < n; ++r) {
+      d.phi(j.row + r) = rows.phi[static_cast<std::size_t>(r)];
+      d.phi_t(j.row + r) = rows.phi_t[static_cast<std::size_t>(r)];
+      d.conv(j.row + r) = rows.conv[static_cast<std::size_t>(r)];
+    }
+    if (j.body_i >= 0) {
+      const auto& b = bodies[static_cast<std::size_t>(j.body_i)];
+      b.kernels->jacobian_rows(b.holder.get(), mi.local, rows.i.data(), n,
+                               d.jacobian.data() + j.jac_i, n);
+    }
+    if (j.body_j >= 0) {
+      const auto& b = bodies[static_cast<std::size_t>(j.body_j)];
+      b.kernels->jacobian_rows(b.holder.get(), mj.local, rows.j.data(), n,
+                               d.jacobian.data() + j.jac_j, n);
+    }
+  }
+}
+
+/// Adds s * J_origin^T f of marker `m` (on a body) to the generalized force.
+template <class Scalar>
+void add_marker_force(const Model<Scalar>& model, Data<Scalar>& d, int marker,
+                      const Vec3<Scalar>& f, Scalar s) {
+  const auto& mk = model.markers()[static_cast<std::size_t>(marker)];
+  if (mk.body < 0) return;
+  const auto& b = model.bodies()[static_cast<std::size_t>(mk.body)];
+  RowSide<Scalar> side;
+  side.add_origin(d.markers[static_cast<std::size_t>(mk.slot)], f, s);
+  b.kernels->jacobian_rows(b.holder.get(), mk.local, &side, 1, d.row_scratch.data(), 1);
+  d.force.segment(b.v_offset, b.nv) += d.row_scratch.head(b.nv);
+}
+
+/// Stage 4: mass blocks and the applied generalized force (body effects, then force elements).
+template <class Scalar>
+void update_dynamics(const Model<Scalar>& model, Data<Scalar>& d) {
+  const auto& bodies = model.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const auto& body = bodies[b];
+    body.kernels->dynamics(body.holder.get(), d.q.data() + body.q_offset,
+                           d.v.data() + body.v_offset, d.rotation[b], body.effects, model.gravity(),
+                           d.mass.data() + body.mass_offset, d.force.data() + body.v_offset);
+  }
+  for (const auto& f : model.forces()) {
+    // Spring-damper: tension k (L - L0) + c L_dot + preload along the line.
+    const auto& mi = d.markers[static_cast<std::size_t>(
+        model.markers()[static_cast<std::size_t>(f.marker_i)].slot)];
+    const auto& mj = d.markers[static_cast<std::size_t>(
+        model.markers()[static_cast<std::size_t>(f.marker_j)].slot)];
+    const Vec3<Scalar> dist = mj.origin.value - mi.origin.value;
+    const Scalar length = dist.norm();
+    if (!(length > Scalar(0))) continue;
+    const Vec3<Scalar> n = dist / length;
+    const Scalar rate = n.dot(Vec3<Scalar>(mj.origin.velocity - mi.origin.velocity));
+    const auto& p = f.params;
+    const Scalar tension = p.stiffness * (length - p.rest_length) + p.damping * rate + p.preload;
+    const Vec3<Scalar> on_j = -tension * n;
+    add_marker_force(model, d, f.marker_j, on_j, Scalar(1));
+    add_marker_force(model, d, f.marker_i, on_j, Scalar(-1));
+  }
+}
+
+/// All stages at d.t (rates: as in update_markers).
+template <class Scalar>
+void evaluate(const Model<Scalar>& model, Data<Scalar>& d, bool rates = true) {
+  update_kinematics(model, d);
+  update_markers(model, d, rates);
+  update_constraints(model, d);
+  update_dynamics(model, d);
+}
+
+// ---- block operations ----------------------------------------------------------------------
+
+/// y += M x with the block-diagonal mass matrix of the last update_dynamics.
+template <class Scalar, class X, class Y>
+void add_mass_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& x, Y& y) {
+  for (const auto& b : model.bodies())
+    y.segment(b.v_offset, b.nv).noalias() +=
+        detail::ConstColBlock<Scalar>(d.mass.data() + b.mass_offset, b.nv, b.nv) *
+        x.segment(b.v_offset, b.nv);
+}
+
+/// Writes the mass blocks into s (nv x nv); other entries are left alone.
+template <class Scalar, class S>
+void set_mass_blocks(const Model<Scalar>& model, const Data<Scalar>& d, S& s) {
+  for (const auto& b : model.bodies())
+    s.block(b.v_offset, b.v_offset, b.nv, b.nv) =
+        detail::ConstColBlock<Scalar>(d.mass.data() + b.mass_offset, b.nv, b.nv);
+}
+
+/// y += B^T x.
+template <class Scalar, class X, class Y>
+void add_jacobian_transpose_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& x,
+                                  Y& y) {
+  for (const auto& j : model.joints()) {
+    const auto xj = x.segment(j.row, j.equations);
+    for (int side = 0; side < 2; ++side) {
+      const int body = side == 0 ? j.body_i : j.body_j;
+      if (body < 0) continue;
+      const auto& b = model.bodies()[static_cast<std::size_t>(body)];
+      const int offset = side == 0 ? j.jac_i : j.jac_j;
+      y.segment(b.v_offset, b.nv).noalias() +=
+          detail::ConstColBlock<Scalar>(d.jacobian.data() + offset, j.equations, b.nv).transpose() *
+          xj;
+    }
+  }
+}
+
+/// y = B x.
+template <class Scalar, class X, class Y>
+void jacobian_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& x, Y& y) {
+  for (const auto& j : model.joints()) {
+    auto yj = y.segment(j.row, j.equations);
+    yj.setZero();
+    for (int side = 0; side < 2; ++side) {
+      const int body = side == 0 ? j.body_i : j.body_j;
+      if (body < 0) continue;
+      const auto& b = model.bodies()[static_cast<std::size_t>(body)];
+      const int offset = side == 0 ? j.jac_i : j.jac_j;
+      yj.noalias() += detail::ConstColBlock<Scalar>(d.jacobian.data() + offset, j.equations, b.nv) *
+                      x.segment(b.v_offset, b.nv);
+    }
+  }
+}
+
+/// s += alpha B^T B, joint by joint: a joint's rows touch only its two bodies' columns.
+template <class Scalar, class S>
+void add_constraint_gram(const Model<Scalar>& model, const Data<Scalar>& d, Scalar alpha, S& s) {
+  const auto& bodies = model.bodies();
+  for (std::size_t k = 0; k < model.joints().size(); ++k) {
+    if (!d.joint_active[k]) continue;
+    const auto& j = model.joints()[k];
+    const int body[2] = {j.body_i, j.body_j};
+    const int offset[2] = {j.jac_i, j.jac_j};
+    for (int p = 0; p < 2; ++p) {
+      if (body[p] < 0) continue;
+      const auto& bp = bodies[static_cast<std::size_t>(body[p])];
+      const detail::ConstColBlock<Scalar> rp(d.jacobian.data() + offset[p], j.equations, bp.nv);
+      for (int r = 0; r < 2; ++r) {
+        if (body[r] < 0) continue;
+        const auto& br = bodies[static_cast<std::size_t>(body[r])];
+        const detail::ConstColBlock<Scalar> rr(d.jacobian.data() + offset[r], j.equations, br.nv);
+        s.block(bp.v_offset, br.v_offset, bp.nv, br.nv).noalias() += alpha * rp.transpose() * rr;
+      }
+    }
+  }
+}
+
+/// s += k_factor K + c_factor D on the modal blocks (D where the body is damped).
+template <class Scalar, class S>
+void add_modal_stiffness_damping(const Model<Scalar>& model, S& s, Scalar k_factor,
+                                 Scalar c_factor) {
+  for (const auto& b : model.bodies()) {
+    if (b.modes == 0) continue;
+    b.kernels->add_stiffness_damping(b.holder.get(), k_factor, c_factor, b.effects.modal_damping,
+                                     &s(b.v_offset + 6, b.v_offset + 6),
+                                     static_cast<int>(s.outerStride()));
+  }
+}
+
+/// Moves the coordinates along a velocity-space increment dx (Lie-group update):
+/// R += dx_R, theta = theta (x) exp(dx_w) renormalized, p += dx_p.
+template <class Scalar, class Q, class X>
+void integrate_coordinates(const Model<Scalar>& model, Q& q, const X& dx) {
+  for (const auto& b : model.bodies()) {
+    q.template segment<3>(b.q_offset) += dx.template segment<3>(b.v_offset);
+    auto theta = q.template segment<4>(b.q_offset + 3);
+    const EulerParameters<Scalar> turned = normalized<Scalar>(compose<Scalar>(
+        EulerParameters<Scalar>(theta),
+        exp_rotation<Scalar>(Vec3<Scalar>(dx.template segment<3>(b.v_offset + 3)))));
+    theta = turned;
+    if (b.modes > 0) q.segment(b.q_offset + 7, b.modes) += dx.segment(b.v_offset + 6, b.modes);
+  }
+}
+
+/// The first body whose coordinates or velocities are not finite, or -1.
+template <class Scalar>
+int nonfinite_body(const Model<Scalar>& model, const Data<Scalar>& d) {
+  const auto& bodies = model.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    if (!d.q.segment(bodies[b].q_offset, 7 + bodies[b].modes).allFinite() ||
+        !d.v.segment(bodies[b].v_offset, bodies[b].nv).allFinite())
+      return static_cast<int>(b);
+  return -1;
+}
+
+}  // namespace flexstress

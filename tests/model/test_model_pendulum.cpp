@@ -1,0 +1,162 @@
+// The runtime model on rigid mechanisms. References: IFToMM benchmark A01, the simple pendulum
+// (Gonzalez, Dopico, Lugris, Cuadrado, Multibody Syst. Dyn. 16 (2006) 179-190: point mass 1 kg
+// on a massless 1 m link, g = 9.81, released from rest horizontal; period
+// 4 sqrt(L/g) K(1/sqrt 2) = 2.367842 s), the statics of a hanging mass, and conservation.
+#include <cmath>
+
+#include <doctest/doctest.h>
+
+#include <flexstress/model/all.hpp>
+
+namespace test_model_pendulum {
+
+using namespace flexstress;
+
+namespace {
+
+struct Pendulum {
+  Model<double> model;
+  BodyId bob;
+  JointId hinge;
+};
+
+Pendulum make_pendulum(double step, double rho) {
+  ModelBuilder<double> b;
+  // A point mass: 1 kg with a negligible inertia (a 1.6 mm steel ball's; its effect on the
+  // period is I / (2 m L^2) = 5e-7 relative), its frame at the mass, 1 m along x from the hinge.
+  const BodyId bob = b.add_rigid_body("bob", 1.0, Vector3d::Zero(), Matrix3d::Identity() * 1e-6);
+  b.set_initial_pose(bob, Vector3d(1, 0, 0));
+  const MarkerId pivot = b.add_marker("pivot", b.ground(), -1, Vector3d::Zero());
+  const MarkerId on_bob = b.add_marker("link end", bob, -1, Vector3d(-1, 0, 0));
+  const JointId hinge = b.add_joint("hinge", JointKind::revolute, pivot, on_bob);
+  b.set_gravity(Vector3d(0, -9.81, 0));
+  b.settings().step = step;
+  b.settings().spectral_radius = rho;
+  auto m = b.finalize();
+  REQUIRE_MESSAGE(m.ok(), m.error().what());
+  return {std::move(*m), bob, hinge};
+}
+
+}  // namespace
+
+TEST_CASE("runtime model, A01 pendulum: period 2.367842 s and energy over 2000 s") {
+  const double h = 5e-3;
+  const Pendulum p = make_pendulum(h, 0.9);
+  Data<double> d(p.model);
+  REQUIRE(initialize(p.model, d).ok());
+  const double e0 = energy(p.model, d).total();
+  double max_drift = 0, first_crossing = -1, last_crossing = -1, x_prev = 1;
+  int crossings = 0;
+  const int steps = 400000;
+  for (int i = 0; i < steps; ++i) {
+    REQUIRE(step(p.model, d) == StepStatus::ok);
+    max_drift = std::max(max_drift, std::abs(energy(p.model, d).total() - e0));
+    const double x = body_position(p.model, d, p.bob).x();
+    if (x_prev < 0 && x >= 0) {  // upward crossing of x = 0, interpolated
+      const double tc = d.t - h * x / (x - x_prev);
+      if (first_crossing < 0) first_crossing = tc;
+      last_crossing = tc;
+      ++crossings;
+    }
+    x_prev = x;
+  }
+  const double period = (last_crossing - first_crossing) / (crossings - 1);
+  MESSAGE("period " << period << " s over " << crossings << " periods, energy drift " << max_drift
+                    << " J, iterations/step " << double(d.statistics.iterations) / steps);
+  CHECK(period == doctest::Approx(2.367842).epsilon(1e-4));
+  CHECK(max_drift < 1e-3 * 9.81);
+}
+
+TEST_CASE("runtime model: a hanging pendulum's reaction carries its weight") {
+  // At rest straight down, the hinge holds m g: the reaction on the bob is +9.81 N in y (the
+  // joint frame is the ground marker's, aligned with the global axes), no moment.
+  ModelBuilder<double> b;
+  const BodyId bob = b.add_rigid_body("bob", 2.0, Vector3d::Zero(), Matrix3d::Identity() * 1e-3);
+  b.set_initial_pose(bob, Vector3d(0, -0.5, 0));
+  const MarkerId pivot = b.add_marker("pivot", b.ground(), -1, Vector3d::Zero());
+  const MarkerId top = b.add_marker("top", bob, -1, Vector3d(0, 0.5, 0));
+  const JointId hinge = b.add_joint("hinge", JointKind::spherical, pivot, top);
+  b.set_gravity(Vector3d(0, -9.81, 0));
+  auto m = b.finalize();
+  REQUIRE(m.ok());
+  Data<double> d(*m);
+  REQUIRE(initialize(*m, d).ok());
+  for (int i = 0; i < 100; ++i) REQUIRE(step(*m, d) == StepStatus::ok);
+  const Reaction<double> r = joint_reaction(*m, d, hinge);
+  CHECK(r.force.y() == doctest::Approx(2.0 * 9.81).epsilon(1e-9));
+  CHECK(std::abs(r.force.x()) < 1e-9);
+  CHECK(r.moment.norm() < 1e-9);
+  CHECK(marker_frame(*m, d, top).origin.norm() < 1e-9);  // held at the pivot
+}
+
+TEST_CASE("runtime model: a driven crank follows its law; an input law reads set_input") {
+  // A rigid bar on a revolute joint driven at 2 rad/s: after 1 s its x axis points at 2 rad.
+  // The same drive as an input set before each step gives the same motion.
+  const auto run = [](bool from_input) {
+    ModelBuilder<double> b;
+    const BodyId bar =
+        b.add_rigid_body("bar", 1.0, Vector3d(0.5, 0, 0), Vector3d(1e-3, 0.1, 0.1).asDiagonal());
+    const MarkerId g = b.add_marker("ground", b.ground(), -1, Vector3d::Zero());
+    const MarkerId e = b.add_marker("bar end", bar, -1, Vector3d::Zero());
+    b.add_joint("pin", JointKind::revolute, g, e);
+    const InputId angle = b.add_input("crank angle");
+    const auto law = from_input ? MotionLaw<double>::from_input(angle)
+                                : MotionLaw<double>::constant_acceleration(0.0, 2.0);
+    b.add_driver("crank", JointKind::revolute_driver, g, e, law);
+    b.set_gravity(Vector3d(0, -9.81, 0));
+    auto m = b.finalize();
+    REQUIRE(m.ok());
+    Data<double> d(*m);
+    if (from_input) {
+      CHECK_FALSE(initialize(*m, d).ok());  // the input was never set
+      CHECK(std::string(d.message.data()).find("crank angle") != std::string::npos);
+    }
+    const auto feed = [&](double t) {
+      if (from_input) REQUIRE(set_input(*m, d, angle, 2.0 * t, 2.0, 0.0) == StepStatus::ok);
+    };
+    feed(0.0);
+    REQUIRE(initialize(*m, d).ok());
+    for (int i = 0; i < 1000; ++i) {
+      feed(d.t + d.settings.step);
+      REQUIRE(step(*m, d) == StepStatus::ok);
+    }
+    const Vector3d x = rotation_matrix<double>(body_orientation(*m, d, bar)).col(0);
+    return std::atan2(x.y(), x.x());
+  };
+  const double by_law = run(false), by_input = run(true);
+  CHECK(by_law == doctest::Approx(2.0).epsilon(1e-8));
+  CHECK(by_input == doctest::Approx(by_law).epsilon(1e-12));
+}
+
+TEST_CASE("runtime model: setup errors name the part") {
+  const auto finalize_error = [](auto&& build) {
+    ModelBuilder<double> b;
+    build(b);
+    auto m = b.finalize();
+    REQUIRE_FALSE(m.ok());
+    return m.error().what();
+  };
+  CHECK(finalize_error([](ModelBuilder<double>&) {}).find("needs a body") != std::string::npos);
+  CHECK(finalize_error([](ModelBuilder<double>& b) {
+          const BodyId a = b.add_rigid_body("arm", 1.0, Vector3d::Zero(), Matrix3d::Identity());
+          const MarkerId m1 = b.add_marker("m1", a, -1);
+          const MarkerId m2 = b.add_marker("m2", a, -1, Vector3d(1, 0, 0));
+          b.add_joint("self", JointKind::spherical, m1, m2);
+        }).find("joint 'self'") != std::string::npos);
+  CHECK(finalize_error([](ModelBuilder<double>& b) {
+          b.add_rigid_body("lead", -1.0, Vector3d::Zero(), Matrix3d::Identity());
+        }).find("body 'lead'") != std::string::npos);
+  CHECK(finalize_error([](ModelBuilder<double>& b) {
+          const BodyId a = b.add_rigid_body("arm", 1.0, Vector3d::Zero(), Matrix3d::Identity());
+          const MarkerId g = b.add_marker("g", b.ground(), -1);
+          const MarkerId m = b.add_marker("m", a, -1);
+          b.add_driver("drive", JointKind::revolute_driver, g, m,
+                       MotionLaw<double>::constant_acceleration(std::nan(""), 1.0));
+        }).find("joint 'drive'") != std::string::npos);
+  CHECK(finalize_error([](ModelBuilder<double>& b) {
+          const BodyId a = b.add_rigid_body("arm", 1.0, Vector3d::Zero(), Matrix3d::Identity());
+          b.add_marker("on a node", a, 3);
+        }).find("marker 'on a node'") != std::string::npos);
+}
+
+}  // namespace test_model_pendulum

@@ -11,7 +11,7 @@
 
 #include <flexstress/dynamics/implicit_integrator.hpp>
 
-#include "../examples/crane/crane_model.hpp"
+#include "../examples/crane/crane_scene.hpp"
 #include "step_timing.hpp"
 
 namespace flexstress::bench_support {

@@ -14,7 +14,7 @@
 #include <flexstress/stress/modal_stress_modes.hpp>
 #include <flexstress/stress/sub_model_inertia.hpp>
 
-#include "../../examples/crane/crane_model.hpp"
+#include "../../examples/crane/crane_scene.hpp"
 
 namespace study {
 

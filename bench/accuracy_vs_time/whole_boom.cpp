@@ -33,7 +33,7 @@
 #include <flexstress/dynamics/implicit_integrator.hpp>
 #include <flexstress/stress/sub_model_inertia.hpp>
 
-#include "../../examples/crane/crane_model.hpp"
+#include "../../examples/crane/crane_scene.hpp"
 
 using namespace flexstress;
 

@@ -1,7 +1,7 @@
 // The crane behind a plain C++ interface without templates: built once (10 boom modes, the
 // stroke drive), then stepped, read and destroyed. The C interface (c_api/) wraps it, so that
 // engines in C or other languages link a compiled crane; its implementation lives in the unit
-// that already instantiates the 10-mode crane (run_modes_10.cpp, crane_session_impl.hpp).
+// crane_session.cpp.
 #pragma once
 
 #include <memory>

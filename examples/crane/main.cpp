@@ -12,9 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "crane_operators.hpp"
 #include "crane_run.hpp"
-#include "game_loop.hpp"
 
 namespace {
 
@@ -27,14 +25,13 @@ const char* kUsage =
     "  --step S         time step (default 0.001)\n"
     "  --tolerance T    Newton tolerance in m/s^2 (default 1e-5; 1e-3 gives the same\n"
     "                   stress history in fewer iterations, docs/accuracy-vs-time.md)\n"
-    "  --modes N        boom deformation modes: 10 (default, the paper's: 6 static + 4\n"
-    "                   fixed-interface; 2.4 % off the converged hot-spot history; 16 are\n"
-    "                   within 0.1 %, docs/accuracy-vs-time.md), or another count this\n"
-    "                   build has (configure with -DFLEXSTRESS_CRANE_EXTRA_MODES=\"16\")\n"
+    "  --modes N        boom deformation modes, 1 to 64: 10 (default, the paper's: 6\n"
+    "                   static + 4 fixed-interface; 2.4 % off the converged hot-spot\n"
+    "                   history; 16 are within 0.1 %, docs/accuracy-vs-time.md)\n"
     "  --density D      sub-model mesh density (default 1.0: 1792 bricks)\n"
     "  --hydraulic      drive the cylinder by its valve (lumped-fluid hydraulics, the\n"
     "                   chamber pressures solved in the implicit step) with commands made\n"
-    "                   from the stroke cycle, instead of prescribing the stroke; 10 modes\n"
+    "                   from the stroke cycle, instead of prescribing the stroke\n"
     "  --submodel-inertia  add the detail's own weight and inertia to its stresses (the\n"
     "                   paper leaves it out; off by default)\n"
     "  --force-driven   drive the detail's far end by the boom's section force and\n"
@@ -42,21 +39,19 @@ const char* kUsage =
     "                   brick model of the whole boom, docs/accuracy-vs-time.md)\n"
     "  --operators K    batch mode: K operators each drive their own version of the\n"
     "                   cycle (lift height, pace, corrections), in parallel; writes\n"
-    "                   operators.csv and a line per operator (10 modes, stroke drive)\n"
+    "                   operators.csv and a line per operator (stroke drive)\n"
     "  --first-operator F  start the batch at operator F (default 0), to split a\n"
     "                   campaign into ranges, e.g. the tasks of a job array\n"
     "  --threads T      threads of the batch (default 0: one per hardware thread)\n"
     "  --game-loop      run the cycle in a fixed-step game loop: frames at their own\n"
     "                   rate, states interpolated for display, the boom's deformed shape\n"
     "                   at render vertices and a live damage read-out; writes\n"
-    "                   game_loop.csv (10 modes, stroke drive)\n"
+    "                   game_loop.csv\n"
     "  --render-hz HZ   the game loop's frame rate (default 60)\n"
     "  --realtime       pace the game loop's frames by the wall clock (default: a\n"
     "                   simulated clock with jitter, reproducible)\n"
     "  --output DIR     output folder (default crane-out)\n"
-    "  --quiet          no progress line\n"
-    "Each mode count is compiled in (a compile-time size); the accuracy study\n"
-    "(bench/accuracy_vs_time) varies it at run time.\n";
+    "  --quiet          no progress line\n";
 
 // Rows 'time,stroke' (s, m; stroke = extension from the start), within the cylinder: the piston
 // starts `start` out of a cylinder of travel `travel` (CraneSpec::hydraulics).
@@ -113,7 +108,7 @@ bool parse_number(const std::string& key, const std::string& value, double& out)
 int main(int argc, char** argv) {
   crane::RunOptions o;
   auto& spec = o.spec;
-  double modes = 10;
+  double modes = o.crane.modes;
   double operators = 0, first_operator = 0, threads = 0, render_hz = 60;
   bool game_loop = false, realtime = false;
   for (int i = 1; i < argc; ++i) {
@@ -127,7 +122,7 @@ int main(int argc, char** argv) {
       continue;
     }
     if (key == "--hydraulic") {
-      o.hydraulic = true;
+      o.crane.hydraulic = true;
       continue;
     }
     if (key == "--game-loop" || key == "--realtime") {
@@ -135,7 +130,7 @@ int main(int argc, char** argv) {
       continue;
     }
     if (key == "--submodel-inertia") {
-      o.with_inertia = true;
+      o.crane.with_inertia = true;
       continue;
     }
     if (key == "--force-driven") {
@@ -163,9 +158,8 @@ int main(int argc, char** argv) {
     else if (key == "--tolerance")
       ok = parse_number(key, value, o.tolerance) && o.tolerance > 0 && o.tolerance <= 1;
     else if (key == "--modes")
-      ok = parse_number(key, value, modes) &&
-           std::find(std::begin(crane::kSupportedModes), std::end(crane::kSupportedModes), modes) !=
-               std::end(crane::kSupportedModes);
+      ok = parse_number(key, value, modes) && modes >= 1 &&
+           modes <= flexstress::max_runtime_modes && modes == std::floor(modes);
     else if (key == "--density")
       ok = parse_number(key, value, spec.submodel_density) && spec.submodel_density > 0;
     else if (key == "--operators")
@@ -184,12 +178,8 @@ int main(int argc, char** argv) {
     else
       o.output = value;
     if (!ok && key == "--modes") {
-      std::string built;
-      for (int n : crane::kSupportedModes) built += " " + std::to_string(n);
-      std::fprintf(stderr,
-                   "error: --modes: this build has the mode counts%s (got '%s'; more with "
-                   "-DFLEXSTRESS_CRANE_EXTRA_MODES at configure time)\n",
-                   built.c_str(), value.c_str());
+      std::fprintf(stderr, "error: --modes: a boom mode count from 1 to %d, got '%s'\n",
+                   flexstress::max_runtime_modes, value.c_str());
       return 2;
     }
     if (!ok) {
@@ -210,36 +200,21 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  o.crane.modes = static_cast<int>(modes);
   if (game_loop) {
-    if (o.hydraulic || modes != 10 || operators > 0) {
-      std::fprintf(stderr,
-                   "error: --game-loop is built for the stroke-driven 10-mode crane, alone\n");
+    if (operators > 0) {
+      std::fprintf(stderr, "error: --game-loop and --operators are separate runs\n");
       return 2;
     }
-    return crane::run_game_loop<10, crane::fixed_storage_limit>(o, render_hz, realtime);
+    return crane::run_game_loop(o, render_hz, realtime);
   }
   if (operators > 0) {
-    if (o.hydraulic || modes != 10) {
-      std::fprintf(stderr, "error: --operators is built for the stroke-driven 10-mode crane\n");
+    if (o.crane.hydraulic) {
+      std::fprintf(stderr, "error: --operators drives the stroke; it has no --hydraulic form\n");
       return 2;
     }
-    return crane::run_operators<10, crane::fixed_storage_limit>(o, static_cast<int>(first_operator),
-                                                                static_cast<int>(operators),
-                                                                static_cast<unsigned>(threads));
+    return crane::run_operators(o, static_cast<int>(first_operator), static_cast<int>(operators),
+                                static_cast<unsigned>(threads));
   }
-  if (o.hydraulic) {
-    if (modes != 10) {
-      std::fprintf(stderr, "error: --hydraulic is built for the 10-mode boom only\n");
-      return 2;
-    }
-    return crane::run<10, crane::fixed_storage_limit, crane::CraneHydraulicEffects>(o);
-  }
-  switch (static_cast<int>(modes)) {
-    case 10: return crane::run<10, crane::fixed_storage_limit>(o);
-#define FLEXSTRESS_CRANE_RUN_CASE(n) \
-  case n: return crane::run<n, crane::storage_limit(n)>(o);
-      FLEXSTRESS_CRANE_EXTRA_MODE_LIST(FLEXSTRESS_CRANE_RUN_CASE)
-#undef FLEXSTRESS_CRANE_RUN_CASE
-    default: return 2;  // unreachable: checked above
-  }
+  return crane::run(o);
 }

@@ -1,11 +1,14 @@
-// The runtime model in one include: ModelBuilder, Model, Data, the step and the read-outs.
+// The runtime model in one include: ModelBuilder, Model, Data, the step, equilibrium,
+// read-outs, outputs and the energy balance.
 #pragma once
 
 #include "flexstress/model/data.hpp"
+#include "flexstress/model/energy_balance.hpp"
 #include "flexstress/model/equilibrium.hpp"
 #include "flexstress/model/handles.hpp"
 #include "flexstress/model/implicit_step.hpp"
 #include "flexstress/model/model.hpp"
 #include "flexstress/model/model_builder.hpp"
 #include "flexstress/model/motion_law.hpp"
+#include "flexstress/model/outputs.hpp"
 #include "flexstress/model/readouts.hpp"

@@ -59,10 +59,11 @@ struct BodyKernels {
   /// leading dimension ld, pointing at the body's first modal row and column).
   void (*add_stiffness_damping)(const void* holder, Scalar k_factor, Scalar c_factor, bool damping,
                                 Scalar* block, int ld);
-  /// Kinetic energy 1/2 v^T M v, elastic energy 1/2 p^T K p and the gravity potential.
+  /// Kinetic energy 1/2 v^T M v, elastic energy 1/2 p^T K p, the gravity potential and the
+  /// power p_dot^T D p_dot the modal damping takes out.
   void (*energies)(const void* holder, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
-                   const Vec3<Scalar>& gravity, Scalar* kinetic, Scalar* elastic,
-                   Scalar* potential);
+                   const Vec3<Scalar>& gravity, Scalar* kinetic, Scalar* elastic, Scalar* potential,
+                   Scalar* damping_power);
 };
 
 namespace detail {
@@ -168,13 +169,15 @@ struct BodyKernelImpl {
 
   static void energies(const void* h, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
                        const Vec3<Scalar>& gravity, Scalar* kinetic, Scalar* elastic,
-                       Scalar* potential) {
+                       Scalar* potential, Scalar* damping_power) {
     const Body& body = holder(h).body;
     Kin k;
     kinematics(body, q, v, a, k);
     *kinetic = body.kinetic_energy(k);
     *elastic = body.elastic_energy(k);
     *potential = body.gravity_potential(k, gravity);
+    *damping_power = Scalar(0);
+    if constexpr (N != 0) *damping_power = k.p_dot.dot(body.modal_damping() * k.p_dot);
   }
 
   static constexpr BodyKernels<Scalar> table{

@@ -39,6 +39,13 @@ struct Data {
   std::vector<MotionValue<Scalar>> inputs;  ///< by InputId
   std::vector<unsigned char> input_set;     ///< whether set_input was called for it
   std::uint64_t revision = 0;               ///< counts runtime changes to the topology
+  /// Internal states of the force elements (hydraulic chamber pressures), by ForceId: the
+  /// last accepted step's.
+  std::vector<HydraulicState<Scalar>> force_states;
+
+  // ---- outputs (evaluate_outputs) ---------------------------------------------------------
+  VectorX outputs;                          ///< by OutputId
+  std::vector<DamageMeter<Scalar>> meters;  ///< by MeterId
 
   // ---- workspace (what an evaluation writes) -----------------------------------------------
   std::vector<Mat3<Scalar>> rotation;        ///< A per body
@@ -93,6 +100,11 @@ struct Data {
     inputs.assign(model.inputs().size(), MotionValue<Scalar>());
     input_set.assign(model.inputs().size(), 0);
     revision = 0;
+    force_states.clear();
+    for (const auto& f : model.forces()) force_states.push_back(f.initial_state);
+    outputs.setZero(model.num_outputs());
+    meters.clear();
+    for (const auto& m : model.meters()) meters.push_back(m.prototype);
     rotation.assign(model.bodies().size(), Mat3<Scalar>::Identity());
     markers.assign(static_cast<std::size_t>(model.num_marker_slots()), MarkerState<Scalar>());
     for (std::size_t g = 0; g < model.ground_markers().size(); ++g)

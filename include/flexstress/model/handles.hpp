@@ -19,6 +19,8 @@ struct MarkerTag;
 struct JointTag;
 struct ForceTag;
 struct InputTag;
+struct OutputTag;
+struct MeterTag;
 
 /// A body; the ground is the body with index -1 (ModelBuilder::ground()).
 using BodyId = Handle<BodyTag>;
@@ -30,5 +32,9 @@ using JointId = Handle<JointTag>;
 using ForceId = Handle<ForceTag>;
 /// A value set from outside before each step (set_input), read by a motion law.
 using InputId = Handle<InputTag>;
+/// One stress output (a hot spot, a gauge, a stress component) of a flexible body.
+using OutputId = Handle<OutputTag>;
+/// A damage meter counting one output.
+using MeterId = Handle<MeterTag>;
 
 }  // namespace flexstress

@@ -221,6 +221,11 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
   }
   detail::factorize_projection(model, d);  // the metric at the assembled configuration
   detail::project_velocities(model, d, max_iterations);
+  if (model.has_force_states()) {  // chamber pressures as set, at this position
+    update_kinematics(model, d);
+    update_markers(model, d);
+    update_force_states(model, d, /*start=*/true);
+  }
   // Accelerations: (M + alpha B^T B) v_dot = Q - B^T lambda - alpha B^T conv, iterated.
   evaluate(model, d);
   in.iteration.setZero();
@@ -370,11 +375,12 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
   in.vd_prev = in.vd_n;
   in.has_previous = true;
   ++d.statistics.steps;
-  if (s.refresh_workspace || s.project_velocities) {
+  if (s.refresh_workspace || s.project_velocities || model.has_force_states()) {
     update_kinematics(model, d);
     update_markers(model, d);
     update_constraints(model, d);
   }
+  if (model.has_force_states()) update_force_states(model, d, /*start=*/false);
   if (s.project_velocities) {
     detail::project_velocities(model, d, s.projection_iterations);
     if (s.project_accelerations) {

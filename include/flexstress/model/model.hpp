@@ -7,6 +7,7 @@
 // Jacobian B (nc x nv), stored as one dense block per joint and body it touches.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,7 +17,9 @@
 #include "flexstress/core/envelope_cholesky.hpp"
 #include "flexstress/core/euler_parameters.hpp"
 #include "flexstress/core/types.hpp"
+#include "flexstress/dynamics/hydraulic_cylinder.hpp"
 #include "flexstress/dynamics/step_settings.hpp"
+#include "flexstress/fatigue/streaming_damage.hpp"
 #include "flexstress/model/body_kernels.hpp"
 #include "flexstress/model/handles.hpp"
 #include "flexstress/model/joint_rows.hpp"
@@ -33,6 +36,13 @@ struct SpringDamperParams {
   Scalar rest_length = Scalar(0);
   Scalar preload = Scalar(0);
 };
+
+enum class ForceKind : std::uint8_t { spring_damper, hydraulic_cylinder };
+
+/// The damage meter a model attaches to an output: streaming rainflow on 128 classes and
+/// Palmgren-Miner damage (fatigue/streaming_damage.hpp).
+template <class Scalar>
+using DamageMeter = fatigue::StreamingDamage<Scalar, 128>;
 
 template <class Scalar>
 class Model {
@@ -75,9 +85,30 @@ class Model {
   };
   struct Force {
     std::string name;
+    ForceKind kind = ForceKind::spring_damper;
     int marker_i = -1, marker_j = -1;
     int body_i = -1, body_j = -1;
-    SpringDamperParams<Scalar> params;
+    SpringDamperParams<Scalar> params;     ///< spring-dampers
+    HydraulicParams<Scalar> hydraulic;     ///< hydraulic cylinders
+    HydraulicState<Scalar> initial_state;  ///< their chamber pressures at the start
+    int law = -1;                          ///< hydraulic cylinders: the valve command's law
+  };
+  /// Stress outputs of a flexible body: y = F p (+ G g for the sub-model's own inertia, g the
+  /// body frame's 12 inertia coordinates), F fused from a sub-model's influence rows and the
+  /// body's boundary modes (stress/fused_stress.hpp).
+  struct OutputSet {
+    std::string name;
+    int body = -1;
+    int first = 0;  ///< its first output's index in Data::outputs
+    Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> rows;     ///< F, outputs x modes
+    Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> inertia;  ///< G (outputs x 12) or empty
+    std::vector<std::string> names;
+  };
+  struct Meter {
+    std::string name;
+    int output = -1;                ///< the output it counts
+    Scalar scale = Scalar(1);       ///< pushed value = scale * output (e.g. 1e-6: Pa to MPa)
+    DamageMeter<Scalar> prototype;  ///< its empty state, copied into each Data
   };
 
   const std::vector<Body>& bodies() const { return bodies_; }
@@ -85,6 +116,15 @@ class Model {
   const std::vector<Joint>& joints() const { return joints_; }
   const std::vector<Force>& forces() const { return forces_; }
   const std::vector<std::string>& inputs() const { return inputs_; }
+  /// Whether a force element has internal states (the integrator then starts and commits them).
+  bool has_force_states() const {
+    for (const auto& f : forces_)
+      if (f.kind == ForceKind::hydraulic_cylinder) return true;
+    return false;
+  }
+  const std::vector<OutputSet>& output_sets() const { return output_sets_; }
+  const std::vector<Meter>& meters() const { return meters_; }
+  int num_outputs() const { return num_outputs_; }
   const Body& body(BodyId b) const { return bodies_[static_cast<std::size_t>(b.index)]; }
   const Marker& marker(MarkerId m) const { return markers_[static_cast<std::size_t>(m.index)]; }
   const Joint& joint(JointId j) const { return joints_[static_cast<std::size_t>(j.index)]; }
@@ -137,6 +177,9 @@ class Model {
   std::vector<Joint> joints_;
   std::vector<Force> forces_;
   std::vector<std::string> inputs_;
+  std::vector<OutputSet> output_sets_;
+  std::vector<Meter> meters_;
+  int num_outputs_ = 0;
   std::vector<unsigned> slot_parts_;
   std::vector<MarkerState<Scalar>> ground_markers_;
   std::vector<int> ground_marker_slots_;

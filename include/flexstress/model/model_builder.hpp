@@ -219,6 +219,76 @@ class ModelBuilder {
     return ForceId{static_cast<int>(forces_.size()) - 1};
   }
 
+  /// A valve-controlled hydraulic cylinder (dynamics/hydraulic_cylinder.hpp) between marker i
+  /// (on the cylinder) and marker j (on the rod), the valve driven by `command` (u in -1..1),
+  /// its chambers starting at pressures p_cap and p_rod (Pa). Its pressures are solved inside
+  /// the implicit step.
+  ForceId add_hydraulic_cylinder(const std::string& name, MarkerId i, MarkerId j,
+                                 const HydraulicParams<Scalar>& params, MotionLaw<Scalar> command,
+                                 Scalar p_cap, Scalar p_rod) {
+    typename ModelType::Force f;
+    f.name = name;
+    f.kind = ForceKind::hydraulic_cylinder;
+    f.marker_i = i.index;
+    f.marker_j = j.index;
+    f.hydraulic = params;
+    f.initial_state.p1 = p_cap;
+    f.initial_state.p2 = p_rod;
+    if (const char* bad = hydraulics::check<Scalar>(params))
+      fail(ErrorCode::invalid_argument, "force '", name, "': ", bad);
+    if (!std::isfinite(double(p_cap)) || !std::isfinite(double(p_rod)))
+      fail(ErrorCode::invalid_argument, "force '", name, "': chamber pressures must be finite");
+    f.law = static_cast<int>(laws_.size());
+    laws_.push_back(std::move(command));
+    forces_.push_back(std::move(f));
+    return ForceId{static_cast<int>(forces_.size()) - 1};
+  }
+
+  /// Stress outputs of a flexible body: y = F p with F (outputs x the body's modes, e.g.
+  /// stress::FusedStress rows), one name per row. Returns the first output; the others follow.
+  OutputId add_stress_outputs(const std::string& name, BodyId body,
+                              const Eigen::MatrixXd& fused_rows,
+                              const std::vector<std::string>& names = {}) {
+    typename ModelType::OutputSet set;
+    set.name = name;
+    set.body = body.index;
+    set.rows = fused_rows.cast<Scalar>();
+    set.names = names;
+    set.names.resize(static_cast<std::size_t>(fused_rows.rows()));
+    for (std::size_t k = 0; k < set.names.size(); ++k)
+      if (set.names[k].empty()) set.names[k] = name + "[" + std::to_string(k) + "]";
+    if (body.index < 0 || body.index >= static_cast<int>(bodies_.size()))
+      fail(ErrorCode::invalid_argument, "outputs '", name, "': no body with index ", body.index);
+    else if (!fused_rows.allFinite())
+      fail(ErrorCode::invalid_argument, "outputs '", name, "': rows not finite");
+    set.first = num_outputs_;
+    num_outputs_ += static_cast<int>(fused_rows.rows());
+    output_sets_.push_back(std::move(set));
+    return OutputId{output_sets_.back().first};
+  }
+  /// Adds the sub-model's own weight and inertia to the outputs of the set that `first`
+  /// starts: y += G g (stress::SubModelInertia rows, outputs x 12).
+  void add_output_inertia(OutputId first, const Eigen::MatrixXd& inertia_rows) {
+    for (auto& set : output_sets_)
+      if (set.first == first.index) {
+        if (inertia_rows.rows() != set.rows.rows() || inertia_rows.cols() != 12)
+          fail(ErrorCode::size_mismatch, "outputs '", set.name, "': inertia rows are ",
+               inertia_rows.rows(), "x", inertia_rows.cols(), ", need ", set.rows.rows(), "x12");
+        set.inertia = inertia_rows.cast<Scalar>();
+        return;
+      }
+    fail(ErrorCode::invalid_argument, "add_output_inertia: output ", first.index,
+         " does not start a set");
+  }
+  /// A damage meter fed with scale * output after each step (evaluate_outputs).
+  MeterId add_damage_meter(const std::string& name, OutputId output,
+                           const DamageMeter<Scalar>& empty_meter, Scalar scale = Scalar(1)) {
+    if (output.index < 0 || output.index >= num_outputs_)
+      fail(ErrorCode::invalid_argument, "meter '", name, "': no output ", output.index);
+    meters_.push_back({name, output.index, scale, empty_meter});
+    return MeterId{static_cast<int>(meters_.size()) - 1};
+  }
+
   /// A value set before each step (set_input), for MotionLaw::from_input.
   InputId add_input(const std::string& name) {
     inputs_.push_back(name);
@@ -342,12 +412,29 @@ class ModelBuilder {
                           "': a marker handle is not of this model");
       f.body_i = markers_[static_cast<std::size_t>(f.marker_i)].body;
       f.body_j = markers_[static_cast<std::size_t>(f.marker_j)].body;
+      if (f.kind == ForceKind::hydraulic_cylinder)
+        if (const char* bad =
+                laws_[static_cast<std::size_t>(f.law)].check(static_cast<int>(inputs_.size())))
+          return make_error(ErrorCode::invalid_argument, "force '", f.name, "': ", bad);
+      if (f.body_i == f.body_j)
+        return make_error(ErrorCode::invalid_argument, "force '", f.name, "': both markers are on ",
+                          m.describe_body(f.body_i));
       for (int mk : {f.marker_i, f.marker_j})
         m.slot_parts_[static_cast<std::size_t>(m.markers_[static_cast<std::size_t>(mk)].slot)] |=
             MarkerParts::origin | marker_needs_rates;
       m.forces_.push_back(std::move(f));
     }
     m.laws_ = laws_;
+    for (const auto& set : output_sets_) {
+      const auto& body = m.bodies_[static_cast<std::size_t>(set.body)];
+      if (set.rows.cols() != body.modes)
+        return make_error(ErrorCode::size_mismatch, "outputs '", set.name, "': rows have ",
+                          set.rows.cols(), " columns, ", m.describe_body(set.body), " has ",
+                          body.modes, " modes");
+    }
+    m.output_sets_ = output_sets_;
+    m.meters_ = meters_;
+    m.num_outputs_ = num_outputs_;
     return m;
   }
 
@@ -436,6 +523,9 @@ class ModelBuilder {
   std::vector<typename ModelType::Force> forces_;
   std::vector<std::string> inputs_;
   std::vector<MotionLaw<Scalar>> laws_;
+  std::vector<typename ModelType::OutputSet> output_sets_;
+  std::vector<typename ModelType::Meter> meters_;
+  int num_outputs_ = 0;
   Vec3<Scalar> gravity_ = Vec3<Scalar>::Zero();
   bool has_gravity_ = false;
   bool quadratic_velocity_ = true;

@@ -109,6 +109,61 @@ void add_marker_force(const Model<Scalar>& model, Data<Scalar>& d, int marker,
   d.force.segment(b.v_offset, b.nv) += d.row_scratch.head(b.nv);
 }
 
+/// The evaluated markers of force element k.
+template <class Scalar>
+const MarkerState<Scalar>& force_marker(const Model<Scalar>& model, const Data<Scalar>& d, int k,
+                                        bool j_side) {
+  const auto& f = model.forces()[static_cast<std::size_t>(k)];
+  const int m = j_side ? f.marker_j : f.marker_i;
+  return d.markers[static_cast<std::size_t>(model.markers()[static_cast<std::size_t>(m)].slot)];
+}
+
+/// A hydraulic cylinder's valve command u at d.t.
+template <class Scalar>
+Scalar valve_command(const Model<Scalar>& model, const Data<Scalar>& d, int k) {
+  const auto& f = model.forces()[static_cast<std::size_t>(k)];
+  return d.laws[static_cast<std::size_t>(f.law)](d.t, d.inputs.data()).value;
+}
+
+/// The force of element k on its marker j's origin (global; marker i gets the opposite).
+/// Spring-damper: tension k (L - L0) + c L_dot + preload along the line; hydraulic cylinder:
+/// the chamber pressures at d.t and the piston position (dynamics/hydraulic_cylinder.hpp).
+template <class Scalar>
+Vec3<Scalar> force_element_force(const Model<Scalar>& model, const Data<Scalar>& d, int k) {
+  const auto& f = model.forces()[static_cast<std::size_t>(k)];
+  const auto& mi = force_marker(model, d, k, false);
+  const auto& mj = force_marker(model, d, k, true);
+  if (f.kind == ForceKind::hydraulic_cylinder)
+    return hydraulics::force<Scalar>(f.hydraulic, d.force_states[static_cast<std::size_t>(k)], d.t,
+                                     valve_command(model, d, k), mi.origin.value, mj.origin.value);
+  const Vec3<Scalar> dist = mj.origin.value - mi.origin.value;
+  const Scalar length = dist.norm();
+  if (!(length > Scalar(0))) return Vec3<Scalar>::Zero();
+  const Vec3<Scalar> n = dist / length;
+  const Scalar rate = n.dot(Vec3<Scalar>(mj.origin.velocity - mi.origin.velocity));
+  const auto& p = f.params;
+  const Scalar tension = p.stiffness * (length - p.rest_length) + p.damping * rate + p.preload;
+  return -tension * n;
+}
+
+/// Starts (at initialize) or commits (after an accepted step) the internal states of the force
+/// elements at d's state (markers up to date).
+template <class Scalar>
+void update_force_states(const Model<Scalar>& model, Data<Scalar>& d, bool start) {
+  for (std::size_t k = 0; k < model.forces().size(); ++k) {
+    const auto& f = model.forces()[k];
+    if (f.kind != ForceKind::hydraulic_cylinder) continue;
+    const int id = static_cast<int>(k);
+    const Scalar u = valve_command(model, d, id);
+    const Vec3<Scalar>& ri = force_marker(model, d, id, false).origin.value;
+    const Vec3<Scalar>& rj = force_marker(model, d, id, true).origin.value;
+    if (start)
+      hydraulics::start<Scalar>(f.hydraulic, d.force_states[k], d.t, u, ri, rj);
+    else
+      hydraulics::commit<Scalar>(f.hydraulic, d.force_states[k], d.t, u, ri, rj);
+  }
+}
+
 /// Stage 4: mass blocks and the applied generalized force (body effects, then force elements).
 template <class Scalar>
 void update_dynamics(const Model<Scalar>& model, Data<Scalar>& d) {
@@ -119,20 +174,9 @@ void update_dynamics(const Model<Scalar>& model, Data<Scalar>& d) {
                            d.v.data() + body.v_offset, d.rotation[b], body.effects, model.gravity(),
                            d.mass.data() + body.mass_offset, d.force.data() + body.v_offset);
   }
-  for (const auto& f : model.forces()) {
-    // Spring-damper: tension k (L - L0) + c L_dot + preload along the line.
-    const auto& mi = d.markers[static_cast<std::size_t>(
-        model.markers()[static_cast<std::size_t>(f.marker_i)].slot)];
-    const auto& mj = d.markers[static_cast<std::size_t>(
-        model.markers()[static_cast<std::size_t>(f.marker_j)].slot)];
-    const Vec3<Scalar> dist = mj.origin.value - mi.origin.value;
-    const Scalar length = dist.norm();
-    if (!(length > Scalar(0))) continue;
-    const Vec3<Scalar> n = dist / length;
-    const Scalar rate = n.dot(Vec3<Scalar>(mj.origin.velocity - mi.origin.velocity));
-    const auto& p = f.params;
-    const Scalar tension = p.stiffness * (length - p.rest_length) + p.damping * rate + p.preload;
-    const Vec3<Scalar> on_j = -tension * n;
+  for (std::size_t k = 0; k < model.forces().size(); ++k) {
+    const Vec3<Scalar> on_j = force_element_force(model, d, static_cast<int>(k));
+    const auto& f = model.forces()[k];
     add_marker_force(model, d, f.marker_j, on_j, Scalar(1));
     add_marker_force(model, d, f.marker_i, on_j, Scalar(-1));
   }

@@ -140,9 +140,9 @@ Energy<Scalar> energy(const Model<Scalar>& m, Data<Scalar>& d) {
   const auto& bodies = m.bodies();
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     const auto& b = bodies[k];
-    Scalar kinetic, elastic, potential;
+    Scalar kinetic, elastic, potential, damping;
     b.kernels->energies(b.holder.get(), d.q.data() + b.q_offset, d.v.data() + b.v_offset,
-                        d.rotation[k], m.gravity(), &kinetic, &elastic, &potential);
+                        d.rotation[k], m.gravity(), &kinetic, &elastic, &potential, &damping);
     e.kinetic += kinetic;
     e.elastic += elastic;
     if (m.has_gravity()) e.gravity += potential;

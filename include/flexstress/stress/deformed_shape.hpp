@@ -29,7 +29,8 @@ struct ShapePoint {
   Vector3d offset = Vector3d::Zero();
 };
 
-/// Positions of points on a flexible body with NModes modal coordinates.
+/// Positions of points on a flexible body with NModes modal coordinates (Eigen::Dynamic: all of
+/// the body data's modes, a count chosen at run time).
 template <int NModes, class Scalar = double>
 class DeformedShape {
  public:
@@ -53,8 +54,9 @@ class DeformedShape {
     if (!phi_b) return phi_b.error();
     DeformedShape shape;
     const Index n = static_cast<Index>(points.size());
+    const Index modes = NModes == Eigen::Dynamic ? body.num_modes : NModes;
     shape.rest_.resize(3, n);
-    shape.phi_.resize(3 * n, NModes);
+    shape.phi_.resize(3 * n, modes);
     for (Index i = 0; i < n; ++i) {
       const ShapePoint& pt = points[static_cast<std::size_t>(i)];
       const Vector3d xa = body.node_positions[static_cast<std::size_t>(pt.host.node_a)];
@@ -64,7 +66,7 @@ class DeformedShape {
               : xa + pt.host.xi *
                          (body.node_positions[static_cast<std::size_t>(pt.host.node_b)] - xa);
       shape.rest_.col(i) = (host + pt.offset).cast<Scalar>();
-      const auto rows = phi_b->middleRows(6 * i, 6).leftCols(NModes);
+      const auto rows = phi_b->middleRows(6 * i, 6).leftCols(modes);
       shape.phi_.middleRows(3 * i, 3) =
           (rows.topRows(3) - skew(pt.offset) * rows.bottomRows(3)).template cast<Scalar>();
     }
@@ -118,9 +120,9 @@ class DeformedShape {
 
   /// Global positions x_i = R + A(theta) (x0_i + Phi_i p) into out (3 x size, sized by the
   /// caller). Never allocates.
-  template <class Out>
+  template <class P, class Out>
   void evaluate(const Vec3<Scalar>& r, const EulerParameters<Scalar>& theta,
-                const Vec<Scalar, NModes>& p, Out& out) const {
+                const Eigen::MatrixBase<P>& p, Out& out) const {
     const Mat3<Scalar> a = rotation_matrix<Scalar>(theta);
     for (Index i = 0; i < size(); ++i)
       out.col(i).noalias() = r + a * (rest_.col(i) + phi_.template middleRows<3>(3 * i) * p);

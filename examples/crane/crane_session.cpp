@@ -1,45 +1,34 @@
-// The definitions of crane::Session (crane_session.hpp), for the one unit that instantiates the
-// 10-mode stroke-driven crane (run_modes_10.cpp): the session adds no scene type of its own.
-#pragma once
+// crane::Session (crane_session.hpp) on the crane's runtime model: a model, its Data, and the
+// detail's stresses copied out after each step.
+#include "crane_session.hpp"
 
 #include <utility>
 
 #include "crane_run.hpp"
-#include "crane_session.hpp"
 
 namespace crane {
 
 struct Session::Impl {
-  using CraneT = Crane<10, fixed_storage_limit, double, CraneEffects>;
-  using SceneT = CraneT::SceneT;
-  CraneT crane;
-  typename SceneT::State state;
-  ImplicitIntegrator<SceneT> integrator;
-  DamageMeter meter;
-  VectorXd y;
+  Crane crane;
+  Data<double> data;
   std::vector<double> stresses;
   std::vector<std::string> names;
   double step_size, end;
   std::string error;
 
-  Impl(CraneT&& c, const RunOptions& o, DamageMeter&& m)
+  Impl(Crane&& c, const RunOptions& o)
       : crane(std::move(c)),
-        state(crane.initial),
-        integrator(crane.scene, settings(o.step)),
-        meter(std::move(m)),
-        y(VectorXd::Zero(crane.fused->num_outputs())),
-        stresses(static_cast<std::size_t>(crane.fused->num_outputs()), 0.0),
+        data(start_data(crane, o)),
+        stresses(static_cast<std::size_t>(crane.model.num_outputs()), 0.0),
+        names(crane.detail.names),
         step_size(o.step),
         end(o.t.back()) {
-    for (Index i = 0; i < crane.outputs.num_outputs(); ++i) {
-      const std::string& label = crane.outputs.label(i);
-      names.push_back(label.empty() ? "output " + std::to_string(i) : label);
-    }
+    data.settings.refresh_workspace = true;
+    data.settings.acceleration_tolerance = ImplicitSettings<double>().acceleration_tolerance;
   }
-  static typename ImplicitIntegrator<SceneT>::Settings settings(double h) {
-    typename ImplicitIntegrator<SceneT>::Settings s;
-    s.step = h;
-    return s;
+  void copy_stresses() {
+    for (std::size_t i = 0; i < stresses.size(); ++i)
+      stresses[i] = output_value(data, crane.output(static_cast<Index>(i)));
   }
 };
 
@@ -72,24 +61,18 @@ std::unique_ptr<Session> Session::create(const SessionOptions& options, std::str
         return nullptr;
       }
   }
-  auto made = make_crane<10, fixed_storage_limit, double, CraneEffects>(o.spec, o.t, o.ds);
+  auto made = make_crane(o.spec, o.crane, o.t, o.ds);
   if (!made) {
     error = made.error().what();
     return nullptr;
   }
-  auto meter = make_damage_meter();
-  if (!meter) {
-    error = meter.error().what();
-    return nullptr;
-  }
-  auto impl = std::make_unique<Impl>(std::move(*made), o, std::move(*meter));
-  if (Status st = impl->integrator.initialize(impl->state); !st) {
+  auto impl = std::make_unique<Impl>(std::move(*made), o);
+  if (Status st = initialize(impl->crane.model, impl->data); !st) {
     error = st.error().what();
     return nullptr;
   }
-  impl->crane.fused->evaluate(impl->state.coordinates<0>().p, impl->y);
-  for (std::size_t i = 0; i < impl->stresses.size(); ++i)
-    impl->stresses[i] = impl->y(static_cast<Index>(i));
+  (void)evaluate_outputs(impl->crane.model, impl->data, /*feed_meters=*/false);
+  impl->copy_stresses();
   return std::unique_ptr<Session>(new Session(std::move(impl)));
 }
 
@@ -99,19 +82,18 @@ Session::~Session() = default;
 Session::Step Session::step() {
   Impl& m = *impl_;
   if (!m.error.empty()) return Step::failed;
-  if (m.state.t >= m.end - 0.5 * m.step_size) return Step::cycle_over;
-  if (const StepStatus st = m.integrator.step(m.state); st != StepStatus::ok) {
-    m.error = std::string("step at t = ") + std::to_string(m.state.t) + " s: " + to_string(st);
+  if (m.data.t >= m.end - 0.5 * m.step_size) return Step::cycle_over;
+  if (const StepStatus st = flexstress::step(m.crane.model, m.data); st != StepStatus::ok) {
+    m.error = std::string("step at t = ") + std::to_string(m.data.t) + " s: " + to_string(st);
     return Step::failed;
   }
-  m.crane.fused->evaluate(m.state.coordinates<0>().p, m.y);
-  for (std::size_t i = 0; i < m.stresses.size(); ++i) m.stresses[i] = m.y(static_cast<Index>(i));
-  (void)m.meter.push(m.y(m.crane.hot_spot_row) / 1e6);  // the meter counts in MPa
+  (void)evaluate_outputs(m.crane.model, m.data);  // the meter counts in MPa
+  m.copy_stresses();
   return Step::ok;
 }
 
 double Session::time() const {
-  return impl_->state.t;
+  return impl_->data.t;
 }
 double Session::cycle_end() const {
   return impl_->end;
@@ -123,13 +105,13 @@ const std::vector<std::string>& Session::output_names() const {
   return impl_->names;
 }
 int Session::hot_spot_index() const {
-  return static_cast<int>(impl_->crane.hot_spot_row);
+  return static_cast<int>(impl_->crane.detail.hot_spot);
 }
 double Session::damage_closed() const {
-  return impl_->meter.closed_damage();
+  return impl_->data.meters[std::size_t(impl_->crane.hot_spot_meter.index)].closed_damage();
 }
 double Session::damage_per_cycle() const {
-  return impl_->meter.damage(fatigue::CycleClosure::repeating);
+  return meter_damage(impl_->data, impl_->crane.hot_spot_meter);
 }
 const std::string& Session::error() const {
   return impl_->error;

@@ -1,0 +1,69 @@
+// Stress outputs and damage meters of a model, evaluated after a step: one call computes every
+// output of a Data (y = F p per output set, plus the sub-model's own inertia where declared)
+// and feeds each meter its output. Never allocates.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "flexstress/core/status.hpp"
+#include "flexstress/fatigue/damage.hpp"
+#include "flexstress/model/data.hpp"
+#include "flexstress/model/model.hpp"
+
+namespace flexstress {
+
+/// The 12 inertia coordinates of a body frame (stress/sub_model_inertia.hpp): frame-origin
+/// acceleration minus gravity, angular acceleration and the products of the angular velocity,
+/// all in the body frame.
+template <class Scalar>
+Eigen::Matrix<Scalar, 12, 1> body_inertia_coordinates(const Model<Scalar>& model,
+                                                      const Data<Scalar>& d, int body) {
+  const auto& b = model.bodies()[static_cast<std::size_t>(body)];
+  const Mat3<Scalar> a = rotation_matrix<Scalar>(d.q.template segment<4>(b.q_offset + 3));
+  const Vec3<Scalar> acc = a.transpose() * d.v_dot.template segment<3>(b.v_offset);
+  const Vec3<Scalar> g =
+      model.has_gravity() ? Vec3<Scalar>(a.transpose() * model.gravity()) : Vec3<Scalar>::Zero();
+  const Vec3<Scalar> w = d.v.template segment<3>(b.v_offset + 3);
+  const Vec3<Scalar> w_dot = d.v_dot.template segment<3>(b.v_offset + 3);
+  Eigen::Matrix<Scalar, 12, 1> c;
+  c << acc - g, w_dot, w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.y() * w.z(),
+      w.z() * w.x();
+  return c;
+}
+
+/// Evaluates every output at d's state and (feed_meters) pushes each meter's output. Returns ok,
+/// or the first meter's refusal (invalid_input for a non-finite value, capacity_exceeded
+/// outside its class window), having evaluated all outputs.
+template <class Scalar>
+StepStatus evaluate_outputs(const Model<Scalar>& model, Data<Scalar>& d, bool feed_meters = true) {
+  for (const auto& set : model.output_sets()) {
+    const auto& b = model.bodies()[static_cast<std::size_t>(set.body)];
+    auto y = d.outputs.segment(set.first, set.rows.rows());
+    y.noalias() = set.rows * d.q.segment(b.q_offset + 7, b.modes);
+    if (set.inertia.size() > 0)
+      y.noalias() += set.inertia * body_inertia_coordinates(model, d, set.body);
+  }
+  StepStatus status = StepStatus::ok;
+  if (!feed_meters) return status;
+  for (std::size_t k = 0; k < model.meters().size(); ++k) {
+    const auto& m = model.meters()[k];
+    const StepStatus s = d.meters[k].push(m.scale * d.outputs(m.output));
+    if (s != StepStatus::ok && status == StepStatus::ok) status = s;
+  }
+  return status;
+}
+
+/// An output's value at the last evaluate_outputs.
+template <class Scalar>
+Scalar output_value(const Data<Scalar>& d, OutputId id) {
+  return d.outputs(id.index);
+}
+
+/// A meter's damage so far, its residue closed as `closure`.
+template <class Scalar>
+Scalar meter_damage(Data<Scalar>& d, MeterId id,
+                    fatigue::CycleClosure closure = fatigue::CycleClosure::repeating) {
+  return d.meters[static_cast<std::size_t>(id.index)].damage(closure);
+}
+
+}  // namespace flexstress

@@ -51,10 +51,22 @@ struct BodyKernels {
   void (*dynamics)(const void* holder, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
                    const BodyEffects& effects, const Vec3<Scalar>& gravity, Scalar* mass,
                    Scalar* force);
-  /// Writes `count` Jacobian rows of marker `marker` (rows of a column-major block with leading
-  /// dimension ld): [rigid | sum_v weight_v^T Psi_v].
-  void (*jacobian_rows)(const void* holder, int marker, const RowSide<Scalar>* sides, int count,
-                        Scalar* block, int ld);
+  /// Writes `count` Jacobian rows of marker `marker` into a row-major block (count x nv):
+  /// [rigid | sum_v weight_v^T Psi_v], v over the marker vectors in `parts` (MarkerParts).
+  void (*jacobian_rows)(const void* holder, int marker, unsigned parts,
+                        const RowSide<Scalar>* sides, int count, Scalar* block);
+  // Block operations on the body's own columns (nv = 6 + modes), at the fixed size:
+  /// y += M x with the body's mass block (column-major nv x nv).
+  void (*mass_times)(int nv, const Scalar* mass, const Scalar* x, Scalar* y);
+  /// y += B^T x for `count` rows of a row-major block (count x nv).
+  void (*transpose_times)(int nv, const Scalar* rows, int count, const Scalar* x, Scalar* y);
+  /// y += B x for `count` rows of a row-major block.
+  void (*rows_times)(int nv, const Scalar* rows, int count, const Scalar* x, Scalar* y);
+  /// s(body rows, other columns) += alpha B^T C for `count` rows of B (this body, row-major,
+  /// count x nv) and C (another body's, count x nc): column by column of a column-major s with
+  /// leading dimension ld.
+  void (*add_gram)(int nv, const Scalar* rows, int count, const Scalar* other, int nc, Scalar alpha,
+                   Scalar* s, int ld);
   /// block += k_factor K + c_factor D on the modal block of an iteration matrix (column-major,
   /// leading dimension ld, pointing at the body's first modal row and column).
   void (*add_stiffness_damping)(const void* holder, Scalar k_factor, Scalar c_factor, bool damping,
@@ -133,23 +145,52 @@ struct BodyKernelImpl {
     Eigen::Map<typename Body::VecV>(force, nv) = fb;
   }
 
-  static void jacobian_rows(const void* h, int marker, const RowSide<Scalar>* sides, int count,
-                            Scalar* block, int ld) {
+  static void jacobian_rows(const void* h, int marker, unsigned parts, const RowSide<Scalar>* sides,
+                            int count, Scalar* block) {
     const Holder& hb = holder(h);
-    const int n = hb.body.modes();
+    const int n = hb.body.modes(), nv = 6 + n;
     const auto& mk = hb.markers[static_cast<std::size_t>(marker)];
     const BodyVector<Scalar, N>* vectors[4] = {&mk.origin, &mk.x, &mk.y, &mk.z};
-    Eigen::Map<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>, 0, Eigen::OuterStride<>> b(
-        block, count, 6 + n, Eigen::OuterStride<>(ld));
     for (int r = 0; r < count; ++r) {
       const RowSide<Scalar>& s = sides[r];
-      b.row(r).template head<6>() = s.rigid;
+      Scalar* row = block + r * nv;
+      Eigen::Map<Eigen::Matrix<Scalar, 1, 6>> rigid(row);
+      rigid = s.rigid;
       if constexpr (N != 0) {
+        // Only the vectors the joint reads carry a weight.
         typename ModalSizes<Scalar, N>::RowN modal = ModalSizes<Scalar, N>::RowN::Zero(n);
-        for (std::size_t v = 0; v < 4; ++v)
-          if (!s.weight[v].isZero(0)) modal.noalias() += s.weight[v].transpose() * vectors[v]->psi;
-        b.row(r).tail(n) = modal;
+        for (unsigned v = 0; v < 4; ++v)
+          if (parts & (1u << v))
+            modal.noalias() += s.weight[v].transpose().lazyProduct(vectors[v]->psi);
+        Eigen::Map<typename ModalSizes<Scalar, N>::RowN> modal_part(row + 6, n);
+        modal_part = modal;
       }
+    }
+  }
+
+  using VecV = typename ModalSizes<Scalar, N>::VecV;
+
+  static void mass_times(int nv, const Scalar* mass, const Scalar* x, Scalar* y) {
+    Eigen::Map<VecV> yb(y, nv);
+    yb.noalias() += Eigen::Map<const Mat<Scalar, Body::nv, Body::nv>>(mass, nv, nv)
+                        .lazyProduct(Eigen::Map<const VecV>(x, nv));
+  }
+  static void transpose_times(int nv, const Scalar* rows, int count, const Scalar* x, Scalar* y) {
+    Eigen::Map<VecV> yb(y, nv);
+    for (int r = 0; r < count; ++r)
+      yb.noalias() += x[r] * Eigen::Map<const VecV>(rows + r * nv, nv);
+  }
+  static void rows_times(int nv, const Scalar* rows, int count, const Scalar* x, Scalar* y) {
+    const Eigen::Map<const VecV> xb(x, nv);
+    for (int r = 0; r < count; ++r) y[r] += Eigen::Map<const VecV>(rows + r * nv, nv).dot(xb);
+  }
+  static void add_gram(int nv, const Scalar* rows, int count, const Scalar* other, int nc,
+                       Scalar alpha, Scalar* s, int ld) {
+    for (int r = 0; r < count; ++r) {
+      const Eigen::Map<const VecV> b(rows + r * nv, nv);
+      const Scalar* c = other + r * nc;
+      for (int k = 0; k < nc; ++k)
+        if (c[k] != Scalar(0)) Eigen::Map<VecV>(s + k * ld, nv).noalias() += (alpha * c[k]) * b;
     }
   }
 
@@ -180,8 +221,16 @@ struct BodyKernelImpl {
     if constexpr (N != 0) *damping_power = k.p_dot.dot(body.modal_damping() * k.p_dot);
   }
 
-  static constexpr BodyKernels<Scalar> table{
-      N, &markers, &dynamics, &jacobian_rows, &add_stiffness_damping, &energies};
+  static constexpr BodyKernels<Scalar> table{N,
+                                             &markers,
+                                             &dynamics,
+                                             &jacobian_rows,
+                                             &mass_times,
+                                             &transpose_times,
+                                             &rows_times,
+                                             &add_gram,
+                                             &add_stiffness_damping,
+                                             &energies};
 
   // ---- setup (may allocate) ----------------------------------------------------------------
   /// Adds a marker at `node` (-1: the body frame) with a rigid offset and axes; -1 if the body

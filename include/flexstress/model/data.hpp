@@ -52,7 +52,7 @@ struct Data {
   std::vector<MarkerState<Scalar>> markers;  ///< by Model::Marker::slot
   VectorX mass;      ///< per body its nv x nv mass block, column-major (Body::mass_offset)
   VectorX force;     ///< Q_e - Q_v - K p - D p_dot and force elements
-  VectorX jacobian;  ///< per joint and body its rows x nv block (Joint::jac_i, jac_j)
+  VectorX jacobian;  ///< per joint and body its rows x nv block, row-major (Joint::jac_i, jac_j)
   VectorX phi, phi_t, conv;
   VectorX row_scratch;  ///< one body's row (force elements)
 

@@ -37,7 +37,7 @@ Eigen::MatrixXd dense_jacobian(const Model<Scalar>& model, const Data<Scalar>& d
       if (body < 0) continue;
       const auto& bb = model.bodies()[static_cast<std::size_t>(body)];
       b.block(j.row, bb.v_offset, j.equations, bb.nv) +=
-          detail::ConstColBlock<Scalar>(d.jacobian.data() + (side == 0 ? j.jac_i : j.jac_j),
+          detail::ConstRowBlock<Scalar>(d.jacobian.data() + (side == 0 ? j.jac_i : j.jac_j),
                                         j.equations, bb.nv)
               .template cast<double>();
     }

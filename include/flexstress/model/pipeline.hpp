@@ -19,11 +19,14 @@ namespace flexstress {
 
 namespace detail {
 
-template <class Scalar>
-using ColBlock =
-    Eigen::Map<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>, 0, Eigen::OuterStride<>>;
+/// A body's mass block (column-major, nv x nv).
 template <class Scalar>
 using ConstColBlock = Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>>;
+/// A joint's rows on one body (row-major, rows x nv): the body kernels' block operations run
+/// along contiguous rows of the body's fixed size.
+template <class Scalar>
+using ConstRowBlock =
+    Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
 
 }  // namespace detail
 
@@ -85,13 +88,13 @@ void update_constraints(const Model<Scalar>& model, Data<Scalar>& d) {
     }
     if (j.body_i >= 0) {
       const auto& b = bodies[static_cast<std::size_t>(j.body_i)];
-      b.kernels->jacobian_rows(b.holder.get(), mi.local, rows.i.data(), n,
-                               d.jacobian.data() + j.jac_i, n);
+      b.kernels->jacobian_rows(b.holder.get(), mi.local, joint_parts_i(j.kind), rows.i.data(), n,
+                               d.jacobian.data() + j.jac_i);
     }
     if (j.body_j >= 0) {
       const auto& b = bodies[static_cast<std::size_t>(j.body_j)];
-      b.kernels->jacobian_rows(b.holder.get(), mj.local, rows.j.data(), n,
-                               d.jacobian.data() + j.jac_j, n);
+      b.kernels->jacobian_rows(b.holder.get(), mj.local, joint_parts_j(j.kind), rows.j.data(), n,
+                               d.jacobian.data() + j.jac_j);
     }
   }
 }
@@ -105,7 +108,8 @@ void add_marker_force(const Model<Scalar>& model, Data<Scalar>& d, int marker,
   const auto& b = model.bodies()[static_cast<std::size_t>(mk.body)];
   RowSide<Scalar> side;
   side.add_origin(d.markers[static_cast<std::size_t>(mk.slot)], f, s);
-  b.kernels->jacobian_rows(b.holder.get(), mk.local, &side, 1, d.row_scratch.data(), 1);
+  b.kernels->jacobian_rows(b.holder.get(), mk.local, MarkerParts::origin, &side, 1,
+                           d.row_scratch.data());
   d.force.segment(b.v_offset, b.nv) += d.row_scratch.head(b.nv);
 }
 
@@ -197,9 +201,8 @@ void evaluate(const Model<Scalar>& model, Data<Scalar>& d, bool rates = true) {
 template <class Scalar, class X, class Y>
 void add_mass_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& x, Y& y) {
   for (const auto& b : model.bodies())
-    y.segment(b.v_offset, b.nv).noalias() +=
-        detail::ConstColBlock<Scalar>(d.mass.data() + b.mass_offset, b.nv, b.nv) *
-        x.segment(b.v_offset, b.nv);
+    b.kernels->mass_times(b.nv, d.mass.data() + b.mass_offset, x.data() + b.v_offset,
+                          y.data() + b.v_offset);
 }
 
 /// Writes the mass blocks into s (nv x nv); other entries are left alone.
@@ -210,37 +213,31 @@ void set_mass_blocks(const Model<Scalar>& model, const Data<Scalar>& d, S& s) {
         detail::ConstColBlock<Scalar>(d.mass.data() + b.mass_offset, b.nv, b.nv);
 }
 
-/// y += B^T x.
+/// y += B^T x, joint by joint and body by body.
 template <class Scalar, class X, class Y>
 void add_jacobian_transpose_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& x,
                                   Y& y) {
-  for (const auto& j : model.joints()) {
-    const auto xj = x.segment(j.row, j.equations);
+  for (const auto& j : model.joints())
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? j.body_i : j.body_j;
       if (body < 0) continue;
       const auto& b = model.bodies()[static_cast<std::size_t>(body)];
-      const int offset = side == 0 ? j.jac_i : j.jac_j;
-      y.segment(b.v_offset, b.nv).noalias() +=
-          detail::ConstColBlock<Scalar>(d.jacobian.data() + offset, j.equations, b.nv).transpose() *
-          xj;
+      b.kernels->transpose_times(b.nv, d.jacobian.data() + (side == 0 ? j.jac_i : j.jac_j),
+                                 j.equations, x.data() + j.row, y.data() + b.v_offset);
     }
-  }
 }
 
 /// y = B x.
 template <class Scalar, class X, class Y>
 void jacobian_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& x, Y& y) {
   for (const auto& j : model.joints()) {
-    auto yj = y.segment(j.row, j.equations);
-    yj.setZero();
+    y.segment(j.row, j.equations).setZero();
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? j.body_i : j.body_j;
       if (body < 0) continue;
       const auto& b = model.bodies()[static_cast<std::size_t>(body)];
-      const int offset = side == 0 ? j.jac_i : j.jac_j;
-      yj.noalias() += detail::ConstColBlock<Scalar>(d.jacobian.data() + offset, j.equations, b.nv) *
-                      x.segment(b.v_offset, b.nv);
+      b.kernels->rows_times(b.nv, d.jacobian.data() + (side == 0 ? j.jac_i : j.jac_j), j.equations,
+                            x.data() + b.v_offset, y.data() + j.row);
     }
   }
 }
@@ -257,12 +254,12 @@ void add_constraint_gram(const Model<Scalar>& model, const Data<Scalar>& d, Scal
     for (int p = 0; p < 2; ++p) {
       if (body[p] < 0) continue;
       const auto& bp = bodies[static_cast<std::size_t>(body[p])];
-      const detail::ConstColBlock<Scalar> rp(d.jacobian.data() + offset[p], j.equations, bp.nv);
-      for (int r = 0; r < 2; ++r) {
-        if (body[r] < 0) continue;
-        const auto& br = bodies[static_cast<std::size_t>(body[r])];
-        const detail::ConstColBlock<Scalar> rr(d.jacobian.data() + offset[r], j.equations, br.nv);
-        s.block(bp.v_offset, br.v_offset, bp.nv, br.nv).noalias() += alpha * rp.transpose() * rr;
+      for (int q = 0; q < 2; ++q) {
+        if (body[q] < 0) continue;
+        const auto& bq = bodies[static_cast<std::size_t>(body[q])];
+        bp.kernels->add_gram(bp.nv, d.jacobian.data() + offset[p], j.equations,
+                             d.jacobian.data() + offset[q], bq.nv, alpha,
+                             &s(bp.v_offset, bq.v_offset), static_cast<int>(s.outerStride()));
       }
     }
   }

@@ -96,7 +96,7 @@ Reaction<Scalar> joint_reaction(const Model<Scalar>& m, const Data<Scalar>& d, J
   const auto lambda = d.lambda.segment(j.row, j.equations);
   if (j.body_j >= 0) {
     const auto& b = m.bodies()[static_cast<std::size_t>(j.body_j)];
-    const detail::ConstColBlock<Scalar> rows(d.jacobian.data() + j.jac_j, j.equations, b.nv);
+    const detail::ConstRowBlock<Scalar> rows(d.jacobian.data() + j.jac_j, j.equations, b.nv);
     const Eigen::Matrix<Scalar, 6, 1> g = -(rows.leftCols(6).transpose() * lambda);
     force = g.template head<3>();
     // Moment about the frame origin (body axes) to the global moment about marker j's origin.
@@ -106,7 +106,7 @@ Reaction<Scalar> joint_reaction(const Model<Scalar>& m, const Data<Scalar>& d, J
   } else if (j.body_i >= 0) {
     // Marker j on the ground: the reaction on the ground is minus that on body i.
     const auto& b = m.bodies()[static_cast<std::size_t>(j.body_i)];
-    const detail::ConstColBlock<Scalar> rows(d.jacobian.data() + j.jac_i, j.equations, b.nv);
+    const detail::ConstRowBlock<Scalar> rows(d.jacobian.data() + j.jac_i, j.equations, b.nv);
     const Eigen::Matrix<Scalar, 6, 1> g = rows.leftCols(6).transpose() * lambda;
     force = g.template head<3>();
     const Mat3<Scalar> a = rotation_matrix<Scalar>(d.q.template segment<4>(b.q_offset + 3));
@@ -188,7 +188,8 @@ StepStatus set_input(const Model<Scalar>&, Data<Scalar>& d, InputId id, Scalar v
   return StepStatus::ok;
 }
 
-/// Gives a driver a new law (setup-time: a table law's copy allocates).
+/// Gives a driver a new law (setup-time: a table law's copy allocates). Counts as a runtime
+/// change: the next step restarts as initialize() does, consistent with the new law's rates.
 template <class Scalar>
 Status set_law(const Model<Scalar>& m, Data<Scalar>& d, JointId id, MotionLaw<Scalar> law) {
   const auto& j = m.joint(id);
@@ -198,6 +199,7 @@ Status set_law(const Model<Scalar>& m, Data<Scalar>& d, JointId id, MotionLaw<Sc
   if (const char* bad = law.check(static_cast<int>(m.inputs().size())))
     return make_error(ErrorCode::invalid_argument, m.describe_joint(id.index), ": ", bad);
   d.laws[static_cast<std::size_t>(j.law)] = std::move(law);
+  ++d.revision;  // the next step restarts from the state with the new law's rates
   return Status::success();
 }
 

@@ -13,6 +13,17 @@ install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/flexstress"
 install(EXPORT flexstressTargets
   NAMESPACE flexstress::
   DESTINATION "${FLEXSTRESS_INSTALL_CMAKEDIR}")
+# The compiled libraries (FLEXSTRESS_BUILD_COMPILED) in an export set of their own, which the
+# package config loads when present: a header-only install stays architecture-independent.
+if(TARGET flexstress_compiled)
+  install(TARGETS flexstress_compiled flexstress_c EXPORT flexstressCompiledTargets
+    ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+    LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+    RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}")
+  install(EXPORT flexstressCompiledTargets
+    NAMESPACE flexstress::
+    DESTINATION "${FLEXSTRESS_INSTALL_CMAKEDIR}")
+endif()
 
 configure_package_config_file(
   "${PROJECT_SOURCE_DIR}/cmake/flexstressConfig.cmake.in"

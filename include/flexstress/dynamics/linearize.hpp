@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 
+#include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/dynamics/scene.hpp"
 
@@ -24,10 +25,12 @@ struct Linearization {
 };
 
 /// M and K (nv x nv) projected on an orthonormal basis of the null space of B (the motions the
-/// joints allow), K symmetrized, and the frequencies of the reduced pair.
-inline Result<Linearization> linearization_on_null_space(const Eigen::MatrixXd& m,
-                                                         Eigen::MatrixXd k,
-                                                         const Eigen::MatrixXd& b) {
+/// joints allow), K symmetrized, and the frequencies of the reduced pair. A template
+/// (FLEXSTRESS_PRECOMPUTE), so that only units that call it instantiate its SVD and eigen
+/// solver.
+FLEXSTRESS_PRECOMPUTE
+Result<Linearization> linearization_on_null_space(const Eigen::MatrixXd& m, Eigen::MatrixXd k,
+                                                  const Eigen::MatrixXd& b) {
   const Eigen::Index nv = m.rows();
   k = 0.5 * (k + k.transpose()).eval();
   Eigen::MatrixXd n = Eigen::MatrixXd::Identity(nv, nv);

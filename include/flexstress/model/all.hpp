@@ -2,6 +2,7 @@
 // read-outs, outputs and the energy balance.
 #pragma once
 
+#include "flexstress/model/compiled.hpp"
 #include "flexstress/model/data.hpp"
 #include "flexstress/model/energy_balance.hpp"
 #include "flexstress/model/equilibrium.hpp"

@@ -1,0 +1,239 @@
+/* flexstress's runtime model behind a C interface (C99, and C++): for programs written in C
+ * or in any language that calls C. Build a model with a builder, finalize it, make a data for
+ * it, then initialize and step; read bodies, markers, joints and energies by handle.
+ *
+ *   fs_model_builder* b = fs_builder_create();
+ *   int beam = fs_builder_add_flexible_body(b, "beam", "beam.fsmodal", 16);
+ *   int pivot = fs_builder_add_marker(b, "pivot", FS_GROUND, -1, NULL, NULL);
+ *   int root = fs_builder_add_marker(b, "root", beam, 0, NULL, NULL);
+ *   fs_builder_add_joint(b, "hinge", FS_JOINT_REVOLUTE, pivot, root);
+ *   fs_model* m = NULL;
+ *   if (fs_builder_finalize(b, &m) != FS_OK) puts(fs_builder_error(b));
+ *   fs_data* d = fs_data_create(m);
+ *   fs_initialize(d);
+ *   while (fs_step(d) == FS_STEP_OK) ...
+ *   fs_data_destroy(d); fs_model_destroy(m); fs_builder_destroy(b);
+ *
+ * Errors. Functions return an fs_status (FS_OK = 0), a handle (>= 0; FS_INVALID_HANDLE on
+ * failure) or a pointer (NULL on failure). Builder mistakes (a node the body lacks, a bad law)
+ * are recorded with the part's name and returned by fs_builder_finalize; read the text with
+ * fs_builder_error. Failures of a data (initialize, equilibrium, a step) are read with
+ * fs_data_error; any failing call also sets fs_last_error (per thread). A null or foreign
+ * handle is an error code, never a crash; no C++ exception crosses this interface.
+ *
+ * Threads. A finalized fs_model is immutable: any number of threads may share it, each with its
+ * own fs_data. An fs_model_builder and an fs_data are not thread-safe: use each from one
+ * thread at a time. A data keeps its model alive (destroying the model first is allowed).
+ *
+ * Units are SI. Frames: positions global; 3x3 matrices are 9 doubles, column-major (columns:
+ * axes); orientations are Euler parameters (e0, e1, e2, e3), scalar first. */
+#ifndef FLEXSTRESS_H
+#define FLEXSTRESS_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fs_model_builder fs_model_builder;
+typedef struct fs_model fs_model;
+typedef struct fs_data fs_data;
+
+typedef enum fs_status {
+  FS_OK = 0,
+  FS_ERROR_NULL = 1,           /* a required pointer argument was null */
+  FS_ERROR_INVALID_HANDLE = 2, /* a body, marker, joint or input handle is not of the model */
+  FS_ERROR_INVALID_ARGUMENT = 3,
+  FS_ERROR_INVALID_MESH = 4, /* e.g. a marker on a node the body lacks */
+  FS_ERROR_DEGENERATE_ELEMENT = 5,
+  FS_ERROR_SINGULAR_MATRIX = 6,
+  FS_ERROR_NOT_CONVERGED = 7,
+  FS_ERROR_SIZE_MISMATCH = 8, /* e.g. more modes asked than the data has */
+  FS_ERROR_IO = 9,
+  FS_ERROR_BAD_FILE_FORMAT = 10,
+  FS_ERROR_BUFFER_TOO_SMALL = 11, /* a result was truncated to the caller's buffer */
+  FS_ERROR_OUT_OF_MEMORY = 12,
+  FS_ERROR_INTERNAL = 13 /* an unexpected C++ exception, caught */
+} fs_status;
+
+/* What fs_step returns (flexstress::StepStatus); after a failure the state is the last good
+ * one and fs_data_error says why. */
+typedef enum fs_step_status {
+  FS_STEP_OK = 0,
+  FS_STEP_NEWTON_NOT_CONVERGED = 1,
+  FS_STEP_CONSTRAINT_VIOLATION = 2,
+  FS_STEP_NON_FINITE_STATE = 3,
+  FS_STEP_ABOVE_STABILITY_LIMIT = 4,
+  FS_STEP_INVALID_INPUT = 5,
+  FS_STEP_CAPACITY_EXCEEDED = 6,
+  FS_STEP_ERROR = -1 /* null or foreign data, or an internal error */
+} fs_step_status;
+
+typedef enum fs_joint_kind {
+  FS_JOINT_SPHERICAL = 0,   /* 3 equations: origins coincide */
+  FS_JOINT_REVOLUTE = 1,    /* 5: turns about the common z axis */
+  FS_JOINT_UNIVERSAL = 2,   /* 4 */
+  FS_JOINT_CYLINDRICAL = 3, /* 4: turns about and slides along z */
+  FS_JOINT_PRISMATIC = 4,   /* 5: slides along z */
+  FS_JOINT_FIXED = 5,       /* 6 */
+  FS_JOINT_DISTANCE = 6,    /* 1: fs_builder_add_distance */
+  FS_JOINT_PRISMATIC_DRIVER = 7, /* 1: (r_j - r_i) . z_i = s(t); fs_builder_add_driver */
+  FS_JOINT_REVOLUTE_DRIVER = 8   /* 1: angle x_i -> x_j about z_i = s(t); fs_builder_add_driver */
+} fs_joint_kind;
+
+#define FS_GROUND (-1)        /* the ground body (fixed); its markers take node -1 */
+#define FS_INVALID_HANDLE (-2) /* what a handle-returning function returns on failure */
+
+/* A prescribed motion s(t): value, rate and acceleration written to out[0..2]. Called inside
+ * the step, from the thread stepping the data: it must not longjmp out, and should be fast. */
+typedef void (*fs_motion_callback)(double t, double out[3], void* user);
+
+typedef enum fs_law_kind {
+  FS_LAW_POLYNOMIAL = 0, /* s = c[0] + c[1] t + c[2] t^2 / 2 */
+  FS_LAW_TABLE = 1,      /* clamped cubic spline through rows (t, s), t increasing */
+  FS_LAW_CALLBACK = 2,
+  FS_LAW_INPUT = 3 /* the value set by fs_set_input before each step */
+} fs_law_kind;
+
+/* A motion law; make one with the fs_law_* functions. Tables are copied when the law is used
+ * (fs_builder_add_driver, fs_set_law): the rows need not outlive that call. */
+typedef struct fs_motion_law {
+  int kind; /* fs_law_kind */
+  double coefficients[3];
+  const double* table; /* rows x 2 doubles: t0, s0, t1, s1, ... */
+  int table_rows;
+  fs_motion_callback callback;
+  void* user;
+  int input;
+} fs_motion_law;
+
+fs_motion_law fs_law_polynomial(double s0, double v, double a);
+fs_motion_law fs_law_table(const double* rows, int num_rows);
+fs_motion_law fs_law_callback(fs_motion_callback callback, void* user);
+fs_motion_law fs_law_input(int input);
+
+/* ---- version ----------------------------------------------------------------------------- */
+const char* fs_version(void); /* "0.1.0" */
+int fs_version_number(void);  /* major * 10000 + minor * 100 + patch */
+/* The message of this thread's last failing call; "" if none. Valid until its next call. */
+const char* fs_last_error(void);
+const char* fs_status_string(int status);
+const char* fs_step_status_string(int step_status);
+
+/* ---- builder ----------------------------------------------------------------------------- */
+fs_model_builder* fs_builder_create(void); /* NULL only if out of memory */
+void fs_builder_destroy(fs_model_builder* b);
+
+/* Returns the handles (>= 0) or FS_INVALID_HANDLE for a null builder or name. Other mistakes
+ * still return a handle and are reported by fs_builder_finalize. */
+int fs_builder_add_rigid_body(fs_model_builder* b, const char* name, double mass,
+                              const double center_of_mass[3], const double inertia_about_com[9]);
+/* A flexible body from a modal body file (flexstress/reduction/modal_body_io.hpp), keeping its
+ * lowest `modes` modes (10 and 16 run kernels compiled for that count). A file that cannot be
+ * read gives FS_INVALID_HANDLE, and finalize then fails with the file's error. */
+int fs_builder_add_flexible_body(fs_model_builder* b, const char* name, const char* path,
+                                 int modes);
+int fs_builder_set_damping_ratio(fs_model_builder* b, int body, double zeta);
+/* Where a body's frame starts; orientation may be NULL (identity). */
+int fs_builder_set_initial_pose(fs_model_builder* b, int body, const double position[3],
+                                const double orientation[4]);
+/* A marker on `body` (FS_GROUND for the ground) at `node` (-1: the body frame), with a rigid
+ * offset (NULL: zero) and axes (NULL: identity; columns: the marker's axes in the body frame). */
+int fs_builder_add_marker(fs_model_builder* b, const char* name, int body, long node,
+                          const double offset[3], const double axes[9]);
+/* A joint between markers i and j on different bodies; not the drivers or distance. */
+int fs_builder_add_joint(fs_model_builder* b, const char* name, int kind, int marker_i,
+                         int marker_j);
+int fs_builder_add_distance(fs_model_builder* b, const char* name, int marker_i, int marker_j,
+                            double length);
+/* kind: FS_JOINT_PRISMATIC_DRIVER or FS_JOINT_REVOLUTE_DRIVER. */
+int fs_builder_add_driver(fs_model_builder* b, const char* name, int kind, int marker_i,
+                          int marker_j, const fs_motion_law* law);
+/* Tension f = stiffness (L - rest_length) + damping L_dot + preload between marker origins. */
+int fs_builder_add_spring_damper(fs_model_builder* b, const char* name, int marker_i,
+                                 int marker_j, double stiffness, double damping,
+                                 double rest_length, double preload);
+int fs_builder_add_input(fs_model_builder* b, const char* name);
+int fs_builder_set_gravity(fs_model_builder* b, const double gravity[3]);
+/* Integrator settings every data starts with: step (s), spectral radius at infinity in [0, 1]
+ * (1: no numerical damping), Newton iterations per step, and the Newton tolerance (an
+ * acceleration, m/s^2; <= 0 keeps the default 1e-5). */
+int fs_builder_set_integrator(fs_model_builder* b, double step, double spectral_radius,
+                              int max_iterations, double tolerance);
+
+/* Checks and builds the model into *model (NULL on failure). The error names the first part
+ * that is wrong. The builder stays usable (and must still be destroyed). */
+int fs_builder_finalize(fs_model_builder* b, fs_model** model);
+/* The builder's last error ("" if none); valid until the next call on that builder. */
+const char* fs_builder_error(const fs_model_builder* b);
+/* Copies it (terminated, truncated to size); returns its full length. */
+size_t fs_builder_copy_error(const fs_model_builder* b, char* buffer, size_t size);
+
+/* ---- model ------------------------------------------------------------------------------- */
+void fs_model_destroy(fs_model* m);
+/* Sizes; -1 for a null model (or a bad body for fs_model_body_modes). */
+int fs_model_num_velocities(const fs_model* m);
+int fs_model_num_constraints(const fs_model* m);
+int fs_model_num_bodies(const fs_model* m);
+int fs_model_num_markers(const fs_model* m);
+int fs_model_num_joints(const fs_model* m);
+int fs_model_num_inputs(const fs_model* m);
+int fs_model_body_modes(const fs_model* m, int body);
+
+/* ---- data -------------------------------------------------------------------------------- */
+fs_data* fs_data_create(const fs_model* m); /* at the initial poses, at rest; NULL on failure */
+void fs_data_destroy(fs_data* d);
+int fs_data_reset(fs_data* d);
+/* Why the last initialize, equilibrium or step failed; "" if none. Valid until the next call
+ * on that data. */
+const char* fs_data_error(const fs_data* d);
+
+/* Consistent initial conditions (assembles the joints, projects velocities). */
+int fs_initialize(fs_data* d);
+/* Moves the data to static equilibrium (velocities zero) at its time. */
+int fs_solve_static_equilibrium(fs_data* d);
+/* One step; returns an fs_step_status. Allocates nothing. */
+int fs_step(fs_data* d);
+int fs_set_step_size(fs_data* d, double step);
+double fs_time(const fs_data* d); /* s; NaN for a null data */
+
+/* Runtime changes: an input's value for the next steps, a joint switched on or off (the next
+ * step restarts from the state, projecting it), a driver's law (if its value or rate differs
+ * from the old law's at the current time, call fs_initialize before stepping). */
+int fs_set_input(fs_data* d, int input, double value, double rate, double acceleration);
+int fs_set_joint_active(fs_data* d, int joint, int active);
+int fs_set_law(fs_data* d, int joint, const fs_motion_law* law);
+
+/* ---- read-outs --------------------------------------------------------------------------- */
+int fs_body_position(const fs_data* d, int body, double position[3]);
+int fs_body_orientation(const fs_data* d, int body, double euler_parameters[4]);
+int fs_body_velocity(const fs_data* d, int body, double velocity[3]);
+int fs_body_angular_velocity(const fs_data* d, int body, double omega_body[3]);
+/* A marker's frame at the current state: origin (global) and axes (columns, global). */
+int fs_marker_frame(const fs_data* d, int marker, double origin[3], double axes[9]);
+/* Force and moment the joint applies to marker j's body, at marker j's origin, in marker i's
+ * axes. Valid after fs_initialize, a step or an equilibrium. */
+int fs_joint_reaction(const fs_data* d, int joint, double force[3], double moment[3]);
+
+typedef struct fs_energy {
+  double kinetic, gravity, elastic, springs, total;
+} fs_energy;
+int fs_energy_compute(fs_data* d, fs_energy* out);
+double fs_constraint_violation(const fs_data* d); /* largest |Phi|; NaN for a null data */
+
+typedef struct fs_statistics {
+  long long steps, iterations, factorizations, over_budget;
+} fs_statistics;
+int fs_statistics_get(const fs_data* d, fs_statistics* out);
+
+/* Natural frequencies (Hz, ascending) of small vibrations about the data's state, which must be
+ * an equilibrium (fs_solve_static_equilibrium). Writes min(capacity, count) of them to hz and
+ * the full count to *count (if not NULL); FS_ERROR_BUFFER_TOO_SMALL if some did not fit. */
+int fs_linearized_frequencies(fs_data* d, double* hz, int capacity, int* count);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FLEXSTRESS_H */

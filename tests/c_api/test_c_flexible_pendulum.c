@@ -1,0 +1,318 @@
+/* The C interface alone (flexstress/flexstress.h, C99): a flexible pendulum, a beam hinged at
+ * one end read from a modal body file, against its full FE model (make_pendulum_files.cpp,
+ * the FE kernel without reduction: an independent reference); its swing under gravity; the
+ * drivers' laws; and the answers to mistakes (finalize errors, bad handles, null pointers).
+ *
+ *   test_c_flexible_pendulum <beam.fsmodal> <beam_reference.txt> */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <flexstress/flexstress.h>
+
+static int failures = 0;
+
+#define CHECK(cond)                                                \
+  do {                                                             \
+    if (!(cond)) {                                                 \
+      fprintf(stderr, "%s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond); \
+      ++failures;                                                  \
+    }                                                              \
+  } while (0)
+
+typedef struct reference {
+  long root_node, tip_node, num_nodes;
+  double mass, length;
+  int num_hz;
+  double hz[16];
+} reference;
+
+static int read_reference(const char* path, reference* r) {
+  FILE* f = fopen(path, "r");
+  int ok, i;
+  if (!f) return 0;
+  ok = fscanf(f, " root_node %ld tip_node %ld num_nodes %ld mass %lf length %lf frequencies %d",
+              &r->root_node, &r->tip_node, &r->num_nodes, &r->mass, &r->length, &r->num_hz) == 6;
+  ok = ok && r->num_hz > 0 && r->num_hz <= 16;
+  for (i = 0; ok && i < r->num_hz; ++i) ok = fscanf(f, "%lf", &r->hz[i]) == 1;
+  fclose(f);
+  return ok;
+}
+
+typedef struct pendulum {
+  fs_model* model;
+  int beam, pivot, root, tip, hinge;
+} pendulum;
+
+/* The beam hinged about z at its x = 0 node, horizontal, with or without gravity. */
+static int build_pendulum(const char* modal_file, const reference* r, int gravity,
+                          pendulum* p) {
+  const double g[3] = {0.0, -9.81, 0.0};
+  fs_model_builder* b = fs_builder_create();
+  int status;
+  p->beam = fs_builder_add_flexible_body(b, "beam", modal_file, 16);
+  p->pivot = fs_builder_add_marker(b, "pivot", FS_GROUND, -1, NULL, NULL);
+  p->root = fs_builder_add_marker(b, "root", p->beam, r->root_node, NULL, NULL);
+  p->tip = fs_builder_add_marker(b, "tip", p->beam, r->tip_node, NULL, NULL);
+  p->hinge = fs_builder_add_joint(b, "hinge", FS_JOINT_REVOLUTE, p->pivot, p->root);
+  if (gravity) CHECK(fs_builder_set_gravity(b, g) == FS_OK);
+  /* rho 0.9: a little numerical damping of the highest modes, as joints need (step_settings). */
+  CHECK(fs_builder_set_integrator(b, 1e-3, 0.9, 30, 0.0) == FS_OK);
+  status = fs_builder_finalize(b, &p->model);
+  if (status != FS_OK) fprintf(stderr, "finalize: %s\n", fs_builder_error(b));
+  fs_builder_destroy(b);
+  return status == FS_OK;
+}
+
+static void check_frequencies(const char* modal_file, const reference* r) {
+  pendulum p;
+  fs_data* d;
+  double hz[64];
+  int count = -1, i;
+  if (!build_pendulum(modal_file, r, 0, &p)) {
+    ++failures;
+    return;
+  }
+  CHECK(fs_model_num_bodies(p.model) == 1);
+  CHECK(fs_model_body_modes(p.model, p.beam) == 16);
+  CHECK(fs_model_num_velocities(p.model) == 6 + 16);
+  CHECK(fs_model_num_constraints(p.model) == 5);
+  CHECK(fs_model_num_markers(p.model) == 3);
+  CHECK(fs_model_num_joints(p.model) == 1);
+  d = fs_data_create(p.model);
+  CHECK(d != NULL);
+  CHECK(fs_solve_static_equilibrium(d) == FS_OK);
+  CHECK(fs_linearized_frequencies(d, hz, 64, &count) == FS_OK);
+  CHECK(count == 6 + 16 - 5);
+  /* The free rotation first, then the pinned-free FE model's bending frequencies, from above
+   * (Rayleigh-Ritz) and within 0.1 % (16 clamped-root modes; test_model_equilibrium.cpp). */
+  CHECK(fabs(hz[0]) < 1e-3);
+  for (i = 1; i < r->num_hz && i < count; ++i) {
+    const double rel = hz[i] / r->hz[i] - 1.0;
+    printf("mode %d: C interface %.6f Hz, FE %.6f Hz (%+.2e)\n", i, hz[i], r->hz[i], rel);
+    CHECK(rel > -1e-6 && rel < 1e-3);
+  }
+  /* A buffer too small: what fits, the count, and a status that says so. */
+  CHECK(fs_linearized_frequencies(d, hz, 2, &count) == FS_ERROR_BUFFER_TOO_SMALL);
+  CHECK(count == 17 && fabs(hz[0]) < 1e-3);
+  fs_data_destroy(d);
+  fs_model_destroy(p.model);
+}
+
+static void check_swing(const char* modal_file, const reference* r) {
+  pendulum p;
+  fs_data* d;
+  fs_energy e0, e;
+  fs_statistics st;
+  double origin[3], axes[9], force[3], moment[3], drift = 0.0, violation = 0.0, bound;
+  int i, all_ok = 1;
+  if (!build_pendulum(modal_file, r, 1, &p)) {
+    ++failures;
+    return;
+  }
+  d = fs_data_create(p.model);
+  /* The model may go before its data: the data keeps it. */
+  fs_model_destroy(p.model);
+  CHECK(fs_initialize(d) == FS_OK);
+  CHECK(fs_energy_compute(d, &e0) == FS_OK);
+  for (i = 0; i < 500; ++i) {
+    const int s = fs_step(d);
+    if (s != FS_STEP_OK) {
+      fprintf(stderr, "step %d: %s (%s)\n", i, fs_step_status_string(s), fs_data_error(d));
+      all_ok = 0;
+      break;
+    }
+    CHECK(fs_energy_compute(d, &e) == FS_OK);
+    if (fabs(e.total - e0.total) > drift) drift = fabs(e.total - e0.total);
+    if (fs_constraint_violation(d) > violation) violation = fs_constraint_violation(d);
+  }
+  CHECK(all_ok);
+  CHECK(fabs(fs_time(d) - 0.5) < 1e-9);
+  /* Energy: the swing turns up to m g L / 2 of potential energy into motion; generalized-alpha
+   * at rho = 0.9 damps only the beam's highest modes, barely excited here, so the total stays
+   * within 1e-4 of that (measured with clang -O2: 5e-7 of it, 1.6e-5 J). */
+  bound = 1e-4 * r->mass * 9.81 * r->length / 2;
+  printf("swing: 0.5 s, energy drift %.3e J (bound %.3e J), largest violation %.2e\n", drift,
+         bound, violation);
+  CHECK(drift < bound);
+  CHECK(e.kinetic > 0.1 * r->mass * 9.81 * r->length / 2);  /* it swung... */
+  CHECK(fs_marker_frame(d, p.tip, origin, axes) == FS_OK);
+  CHECK(origin[1] < -0.5);                                    /* ...downwards */
+  CHECK(fabs(hypot(origin[0], origin[1]) - r->length) < 0.01); /* a beam of its length */
+  CHECK(fabs(axes[8] - 1.0) < 1e-6);                           /* turning about z */
+  CHECK(violation < 1e-6);
+  CHECK(fs_joint_reaction(d, p.hinge, force, moment) == FS_OK);
+  CHECK(isfinite(force[0]) && isfinite(force[1]) && fabs(moment[0]) < 1e-6 * r->mass);
+  CHECK(fs_statistics_get(d, &st) == FS_OK);
+  CHECK(st.steps == 500 && st.iterations >= 500 && st.factorizations >= 1);
+  printf("statistics: %lld steps, %.2f iterations/step, %lld factorizations\n", st.steps,
+         (double)st.iterations / (double)st.steps, st.factorizations);
+  fs_data_destroy(d);
+}
+
+/* phi(t) = 0.5 t, written by a callback. */
+static void ramp(double t, double out[3], void* user) {
+  const double rate = *(const double*)user;
+  out[0] = rate * t;
+  out[1] = rate;
+  out[2] = 0.0;
+}
+
+static double angle_z(const fs_data* d, int body) {
+  double e[4];
+  if (fs_body_orientation(d, body, e) != FS_OK) return NAN;
+  return 2.0 * atan2(e[3], e[0]);
+}
+
+/* A rigid crank turned by a revolute driver: each kind of law through the interface. */
+static void check_drivers(void) {
+  const double com[3] = {0.5, 0.0, 0.0}, inertia[9] = {1e-3, 0, 0, 0, 0.1, 0, 0, 0, 0.1};
+  const double table[8] = {0.0, 0.0, 0.1, 0.05, 0.2, 0.2, 0.3, 0.3};
+  double rate = 0.5, v[3], w[3], x[3];
+  fs_model_builder* b = fs_builder_create();
+  fs_model* m = NULL;
+  fs_data* d;
+  fs_motion_law law = fs_law_callback(ramp, &rate);
+  int crank, pivot, end, hinge, drive, input, i;
+  crank = fs_builder_add_rigid_body(b, "crank", 2.0, com, inertia);
+  pivot = fs_builder_add_marker(b, "pivot", FS_GROUND, -1, NULL, NULL);
+  end = fs_builder_add_marker(b, "crank end", crank, -1, NULL, NULL);
+  hinge = fs_builder_add_joint(b, "hinge", FS_JOINT_REVOLUTE, pivot, end);
+  drive = fs_builder_add_driver(b, "motor", FS_JOINT_REVOLUTE_DRIVER, pivot, end, &law);
+  input = fs_builder_add_input(b, "motor angle");
+  CHECK(hinge >= 0 && drive >= 0 && input == 0);
+  CHECK(fs_builder_finalize(b, &m) == FS_OK);
+  fs_builder_destroy(b);
+  CHECK(fs_model_num_inputs(m) == 1 && fs_model_num_constraints(m) == 6);
+  d = fs_data_create(m);
+  CHECK(fs_initialize(d) == FS_OK);
+  for (i = 0; i < 100; ++i) CHECK(fs_step(d) == FS_STEP_OK);
+  CHECK(fabs(angle_z(d, crank) - 0.05) < 1e-6); /* callback: 0.5 rad/s for 0.1 s */
+  CHECK(fs_body_angular_velocity(d, crank, w) == FS_OK && fabs(w[2] - 0.5) < 1e-4);
+  CHECK(fs_body_velocity(d, crank, v) == FS_OK && fabs(v[0]) < 1e-9);
+  CHECK(fs_body_position(d, crank, x) == FS_OK && fabs(x[0]) < 1e-9);
+  /* A table law (passes through its rows; 0.05 rad at t = 0.1 s, where the ramp is). Its rate
+   * differs from the ramp's: a new law is a restart, so initialize again (projects v). */
+  law = fs_law_table(table, 4);
+  CHECK(fs_set_law(d, drive, &law) == FS_OK);
+  CHECK(fs_initialize(d) == FS_OK);
+  for (i = 0; i < 100; ++i) CHECK(fs_step(d) == FS_STEP_OK);
+  CHECK(fabs(angle_z(d, crank) - 0.2) < 1e-6);
+  /* An input law: initialize refuses it until the input is set, then assembles the jump. */
+  law = fs_law_input(input);
+  CHECK(fs_set_law(d, drive, &law) == FS_OK);
+  CHECK(fs_initialize(d) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_data_error(d), "motor angle") != NULL);
+  CHECK(fs_set_input(d, input, 0.25, 0.0, 0.0) == FS_OK);
+  CHECK(fs_initialize(d) == FS_OK);
+  for (i = 0; i < 200; ++i) CHECK(fs_step(d) == FS_STEP_OK);
+  CHECK(fabs(angle_z(d, crank) - 0.25) < 1e-6);
+  CHECK(fs_set_input(d, input, NAN, 0.0, 0.0) == FS_ERROR_INVALID_ARGUMENT);
+  /* A polynomial law; then the driver switched off: the crank turns on freely (no gravity). */
+  law = fs_law_polynomial(0.25, 0.0, 0.0);
+  CHECK(fs_set_law(d, drive, &law) == FS_OK);
+  CHECK(fs_set_joint_active(d, drive, 0) == FS_OK);
+  CHECK(fs_step(d) == FS_STEP_OK);
+  /* A bad table is an error naming the row, and changes nothing. */
+  law = fs_law_table(table, 1);
+  CHECK(fs_set_law(d, drive, &law) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_data_error(d), "two rows") != NULL);
+  CHECK(fs_set_law(d, hinge, &law) != FS_OK); /* not a driver */
+  fs_data_destroy(d);
+  fs_model_destroy(m);
+}
+
+static void check_errors(const char* modal_file, const reference* r) {
+  fs_model_builder* b = fs_builder_create();
+  fs_model* m = NULL;
+  fs_data* d;
+  char small[8];
+  double x[3] = {0.0, 0.0, 0.0};
+  fs_motion_law law = fs_law_polynomial(0.0, 0.0, 0.0);
+  int beam, pivot, status;
+  /* A marker on a node the body lacks: finalize fails, naming the marker. */
+  beam = fs_builder_add_flexible_body(b, "beam", modal_file, 16);
+  pivot = fs_builder_add_marker(b, "pivot", FS_GROUND, -1, NULL, NULL);
+  CHECK(fs_builder_add_marker(b, "far marker", beam, r->num_nodes + 5, NULL, NULL) >= 0);
+  fs_builder_add_joint(b, "hinge", FS_JOINT_REVOLUTE, pivot,
+                       fs_builder_add_marker(b, "root", beam, r->root_node, NULL, NULL));
+  status = fs_builder_finalize(b, &m);
+  printf("expected finalize error: %s\n", fs_builder_error(b));
+  CHECK(status == FS_ERROR_INVALID_MESH && m == NULL);
+  CHECK(strstr(fs_builder_error(b), "far marker") != NULL);
+  CHECK(fs_builder_copy_error(b, small, sizeof small) == strlen(fs_builder_error(b)));
+  CHECK(strlen(small) == sizeof small - 1);
+  fs_builder_destroy(b);
+
+  /* A file that is not there: the body's handle is invalid and finalize names the body. */
+  b = fs_builder_create();
+  CHECK(fs_builder_add_flexible_body(b, "ghost", "/nonexistent/ghost.fsmodal", 10) ==
+        FS_INVALID_HANDLE);
+  CHECK(fs_builder_finalize(b, &m) == FS_ERROR_IO && m == NULL);
+  CHECK(strstr(fs_builder_error(b), "ghost") != NULL);
+  fs_builder_destroy(b);
+
+  /* More modes than the file has; an unknown joint kind; a driver kind without a law. */
+  b = fs_builder_create();
+  fs_builder_add_flexible_body(b, "greedy", modal_file, 40);
+  CHECK(fs_builder_finalize(b, &m) == FS_ERROR_SIZE_MISMATCH);
+  CHECK(strstr(fs_builder_error(b), "greedy") != NULL);
+  fs_builder_destroy(b);
+  b = fs_builder_create();
+  CHECK(fs_builder_add_joint(b, "odd", 42, 0, 1) == FS_INVALID_HANDLE);
+  CHECK(strstr(fs_last_error(), "odd") != NULL);
+  CHECK(fs_builder_add_driver(b, "no law", FS_JOINT_REVOLUTE_DRIVER, 0, 1, NULL) ==
+        FS_INVALID_HANDLE);
+  fs_builder_destroy(b);
+
+  /* Null pointers and handles of nothing: error codes, never a crash. */
+  CHECK(fs_builder_add_marker(NULL, "m", FS_GROUND, -1, NULL, NULL) == FS_INVALID_HANDLE);
+  CHECK(fs_builder_add_driver(NULL, "d", FS_JOINT_REVOLUTE_DRIVER, 0, 1, &law) ==
+        FS_INVALID_HANDLE);
+  CHECK(fs_builder_finalize(NULL, &m) == FS_ERROR_NULL);
+  CHECK(fs_data_create(NULL) == NULL);
+  CHECK(fs_step(NULL) == FS_STEP_ERROR);
+  CHECK(fs_initialize(NULL) == FS_ERROR_NULL);
+  CHECK(fs_model_num_velocities(NULL) == -1);
+  CHECK(isnan(fs_time(NULL)) && isnan(fs_constraint_violation(NULL)));
+  fs_data_destroy(NULL);
+  fs_model_destroy(NULL);
+  fs_builder_destroy(NULL);
+
+  b = fs_builder_create();
+  beam = fs_builder_add_rigid_body(b, "block", 1.0, x, (const double[9]){1, 0, 0, 0, 1, 0, 0, 0, 1});
+  CHECK(fs_builder_finalize(b, &m) == FS_OK);
+  fs_builder_destroy(b);
+  d = fs_data_create(m);
+  CHECK(fs_body_position(d, 7, x) == FS_ERROR_INVALID_HANDLE);
+  CHECK(strstr(fs_last_error(), "body") != NULL);
+  CHECK(fs_body_position(d, FS_GROUND, x) == FS_ERROR_INVALID_HANDLE);
+  CHECK(fs_body_position(d, beam, NULL) == FS_ERROR_NULL);
+  CHECK(fs_marker_frame(d, 0, x, NULL) == FS_ERROR_INVALID_HANDLE);
+  CHECK(fs_joint_reaction(d, 3, x, x) == FS_ERROR_INVALID_HANDLE);
+  CHECK(fs_set_joint_active(d, -5, 1) == FS_ERROR_INVALID_HANDLE);
+  CHECK(fs_set_input(d, 0, 1.0, 0.0, 0.0) == FS_ERROR_INVALID_HANDLE);
+  CHECK(fs_set_law(d, 0, &law) == FS_ERROR_INVALID_HANDLE);
+  CHECK(fs_model_body_modes(m, 3) == -1 && fs_model_body_modes(m, beam) == 0);
+  CHECK(fs_set_step_size(d, -1.0) == FS_ERROR_INVALID_ARGUMENT);
+  fs_data_destroy(d);
+  fs_model_destroy(m);
+}
+
+int main(int argc, char** argv) {
+  reference r;
+  if (argc != 3 || !read_reference(argv[2], &r)) {
+    fprintf(stderr, "usage: %s <beam.fsmodal> <beam_reference.txt> (readable)\n", argv[0]);
+    return 2;
+  }
+  printf("flexstress %s (%d)\n", fs_version(), fs_version_number());
+  CHECK(fs_version_number() >= 100 && strlen(fs_version()) >= 5);
+  CHECK(strcmp(fs_status_string(FS_ERROR_INVALID_HANDLE), "invalid handle") == 0);
+  check_frequencies(argv[1], &r);
+  check_swing(argv[1], &r);
+  check_drivers();
+  check_errors(argv[1], &r);
+  if (failures) fprintf(stderr, "%d checks failed\n", failures);
+  else printf("all checks passed\n");
+  return failures ? 1 : 0;
+}

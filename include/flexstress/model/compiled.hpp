@@ -13,11 +13,13 @@
 #include <Eigen/Eigenvalues>
 
 #include "flexstress/model/data.hpp"
+#include "flexstress/model/energy_balance.hpp"
 #include "flexstress/model/equilibrium.hpp"
 #include "flexstress/model/implicit_step.hpp"
 #include "flexstress/model/model.hpp"
 #include "flexstress/model/model_builder.hpp"
 #include "flexstress/model/motion_law.hpp"
+#include "flexstress/model/outputs.hpp"
 #include "flexstress/model/pipeline.hpp"
 #include "flexstress/model/readouts.hpp"
 
@@ -47,39 +49,47 @@
   D void detail::adopt_flexible<S, N>(const reduction::ModalBodyData&, int, bool&, \
                                       std::shared_ptr<void>&, const BodyKernels<S>*&, Error&);
 
-#define FLEXSTRESS_COMPILED_MODEL(D, S)                                                       \
-  D struct MotionLaw<S>;                                                                      \
-  D class Model<S>;                                                                           \
-  D struct Data<S>;                                                                           \
-  D class ModelBuilder<S>;                                                                    \
-  D void update_kinematics<S>(const Model<S>&, Data<S>&);                                     \
-  D void update_markers<S>(const Model<S>&, Data<S>&, bool);                                  \
-  D void update_constraints<S>(const Model<S>&, Data<S>&);                                    \
-  D void add_marker_force<S>(const Model<S>&, Data<S>&, int, const Vec3<S>&, S);              \
-  D void update_dynamics<S>(const Model<S>&, Data<S>&);                                       \
-  D void evaluate<S>(const Model<S>&, Data<S>&, bool);                                        \
-  D int nonfinite_body<S>(const Model<S>&, const Data<S>&);                                   \
-  D void set_step_size<S>(Data<S>&, S);                                                       \
-  D Status initialize<S>(const Model<S>&, Data<S>&, int);                                     \
-  D StepStatus step<S>(const Model<S>&, Data<S>&);                                            \
-  D Eigen::MatrixXd dense_jacobian<S>(const Model<S>&, const Data<S>&);                       \
-  D Status solve_static_equilibrium<S>(const Model<S>&, Data<S>&,                             \
-                                       const StaticEquilibriumOptions&);                      \
-  D Result<Linearization> linearize<S>(const Model<S>&, Data<S>&, double);                    \
-  D Vec3<S> body_position<S>(const Model<S>&, const Data<S>&, BodyId);                        \
-  D EulerParameters<S> body_orientation<S>(const Model<S>&, const Data<S>&, BodyId);          \
-  D Vec3<S> body_velocity<S>(const Model<S>&, const Data<S>&, BodyId);                        \
-  D Vec3<S> body_angular_velocity<S>(const Model<S>&, const Data<S>&, BodyId);                \
-  D Eigen::Matrix<S, Eigen::Dynamic, 1> modal_coordinates<S>(const Model<S>&, const Data<S>&, \
-                                                             BodyId);                         \
-  D Frame<S> marker_frame<S>(const Model<S>&, const Data<S>&, MarkerId);                      \
-  D Reaction<S> joint_reaction<S>(const Model<S>&, const Data<S>&, JointId);                  \
-  D S constraint_violation<S>(const Model<S>&, const Data<S>&);                               \
-  D Energy<S> energy<S>(const Model<S>&, Data<S>&);                                           \
-  D void set_joint_active<S>(const Model<S>&, Data<S>&, JointId, bool);                       \
-  D bool joint_active<S>(const Data<S>&, JointId);                                            \
-  D StepStatus set_input<S>(const Model<S>&, Data<S>&, InputId, S, S, S);                     \
-  D Status set_law<S>(const Model<S>&, Data<S>&, JointId, MotionLaw<S>);
+#define FLEXSTRESS_COMPILED_MODEL(D, S)                                                        \
+  D struct MotionLaw<S>;                                                                       \
+  D class Model<S>;                                                                            \
+  D struct Data<S>;                                                                            \
+  D class ModelBuilder<S>;                                                                     \
+  D void update_kinematics<S>(const Model<S>&, Data<S>&);                                      \
+  D void update_markers<S>(const Model<S>&, Data<S>&, bool);                                   \
+  D void update_constraints<S>(const Model<S>&, Data<S>&);                                     \
+  D void add_marker_force<S>(const Model<S>&, Data<S>&, int, const Vec3<S>&, S);               \
+  D void update_dynamics<S>(const Model<S>&, Data<S>&);                                        \
+  D void evaluate<S>(const Model<S>&, Data<S>&, bool);                                         \
+  D int nonfinite_body<S>(const Model<S>&, const Data<S>&);                                    \
+  D void set_step_size<S>(Data<S>&, S);                                                        \
+  D Status initialize<S>(const Model<S>&, Data<S>&, int);                                      \
+  D StepStatus step<S>(const Model<S>&, Data<S>&);                                             \
+  D Eigen::MatrixXd dense_jacobian<S>(const Model<S>&, const Data<S>&);                        \
+  D Status solve_static_equilibrium<S>(const Model<S>&, Data<S>&,                              \
+                                       const StaticEquilibriumOptions&);                       \
+  D Result<Linearization> linearize<S>(const Model<S>&, Data<S>&, double);                     \
+  D Vec3<S> body_position<S>(const Model<S>&, const Data<S>&, BodyId);                         \
+  D EulerParameters<S> body_orientation<S>(const Model<S>&, const Data<S>&, BodyId);           \
+  D Vec3<S> body_velocity<S>(const Model<S>&, const Data<S>&, BodyId);                         \
+  D Vec3<S> body_angular_velocity<S>(const Model<S>&, const Data<S>&, BodyId);                 \
+  D Eigen::Matrix<S, Eigen::Dynamic, 1> modal_coordinates<S>(const Model<S>&, const Data<S>&,  \
+                                                             BodyId);                          \
+  D Frame<S> marker_frame<S>(const Model<S>&, const Data<S>&, MarkerId);                       \
+  D Reaction<S> joint_reaction<S>(const Model<S>&, const Data<S>&, JointId);                   \
+  D S constraint_violation<S>(const Model<S>&, const Data<S>&);                                \
+  D Energy<S> energy<S>(const Model<S>&, Data<S>&);                                            \
+  D void set_joint_active<S>(const Model<S>&, Data<S>&, JointId, bool);                        \
+  D bool joint_active<S>(const Data<S>&, JointId);                                             \
+  D StepStatus set_input<S>(const Model<S>&, Data<S>&, InputId, S, S, S);                      \
+  D Status set_law<S>(const Model<S>&, Data<S>&, JointId, MotionLaw<S>);                       \
+  D const MarkerState<S>& force_marker<S>(const Model<S>&, const Data<S>&, int, bool);         \
+  D S valve_command<S>(const Model<S>&, const Data<S>&, int);                                  \
+  D Vec3<S> force_element_force<S>(const Model<S>&, const Data<S>&, int);                      \
+  D void update_force_states<S>(const Model<S>&, Data<S>&, bool);                              \
+  D Eigen::Matrix<S, 12, 1> body_inertia_coordinates<S>(const Model<S>&, const Data<S>&, int); \
+  D StepStatus evaluate_outputs<S>(const Model<S>&, Data<S>&, bool);                           \
+  D S meter_damage<S>(Data<S>&, MeterId, fatigue::CycleClosure);                               \
+  D class EnergyBalance<S>;
 
 #define FLEXSTRESS_COMPILED_KERNEL_EXTERN(S, N) FLEXSTRESS_COMPILED_KERNEL(extern template, S, N)
 #define FLEXSTRESS_COMPILED_ADOPT_EXTERN(S, N) FLEXSTRESS_COMPILED_ADOPT(extern template, S, N)

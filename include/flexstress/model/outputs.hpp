@@ -26,8 +26,12 @@ Eigen::Matrix<Scalar, 12, 1> body_inertia_coordinates(const Model<Scalar>& model
   const Vec3<Scalar> w = d.v.template segment<3>(b.v_offset + 3);
   const Vec3<Scalar> w_dot = d.v_dot.template segment<3>(b.v_offset + 3);
   Eigen::Matrix<Scalar, 12, 1> c;
-  c << acc - g, w_dot, w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.y() * w.z(),
-      w.z() * w.x();
+  c.template head<3>() = acc - g;
+  c.template segment<3>(3) = w_dot;
+  c.template segment<3>(6) = w.cwiseProduct(w);
+  c(9) = w.x() * w.y();
+  c(10) = w.y() * w.z();
+  c(11) = w.z() * w.x();
   return c;
 }
 

@@ -185,7 +185,7 @@ int run_game_loop(const RunOptions& o, double render_hz, bool realtime) {
     while (accumulator >= h && d.t < t_end - 0.5 * h) {
       r_prev = body_position(model, d, cr.boom_body);
       theta_prev = body_orientation(model, d, cr.boom_body);
-      p_prev = d.q.segment(model.body(cr.boom_body).q_offset + 7, p_prev.size());
+      p_prev = modal_coordinates(model, d, cr.boom_body);
       if (const StepStatus st = step(model, d); st != StepStatus::ok) {
         std::fprintf(stderr, "error: step at t = %g s: %s\n", d.t, to_string(st));
         failed = true;
@@ -206,8 +206,7 @@ int run_game_loop(const RunOptions& o, double render_hz, bool realtime) {
     const double sign = theta_prev.dot(theta_now) < 0 ? -1.0 : 1.0;
     r_shown = r_prev + alpha * (body_position(model, d, cr.boom_body) - r_prev);
     theta_shown = (theta_prev + alpha * (sign * theta_now - theta_prev)).normalized();
-    p_shown = p_prev +
-              alpha * (d.q.segment(model.body(cr.boom_body).q_offset + 7, p_prev.size()) - p_prev);
+    p_shown = p_prev + alpha * (modal_coordinates(model, d, cr.boom_body) - p_prev);
     shape->evaluate(r_shown, theta_shown, p_shown, drawn);
     shape->evaluate(r_shown, theta_shown, p_zero, rigid);
     const Index tip = shape->size() - 1;

@@ -12,131 +12,109 @@
 // chain of parallelograms); a solver that jumps branch at a singular configuration folds a
 // parallelogram into an anti-parallelogram. Mechanical energy is conserved.
 //
-// The scene's type is composed from index sequences, so N = 40 (81 bodies, 121 joints) is as
-// short to write as N = 1; above the fixed-storage limit the scene uses dynamic storage.
+// A runtime model (docs/model.md): N is a run-time number, N = 40 (81 bodies, 121 joints) is
+// built by the same loops as N = 1.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
+#include <string>
+#include <vector>
 
-#include <flexstress/core/euler_parameters.hpp>
-#include <flexstress/dynamics/implicit_integrator.hpp>
+#include <flexstress/model/all.hpp>
 
 namespace four_bar_chain {
 
 using namespace flexstress;
 
-namespace detail {
-
-template <std::size_t>
-using Link = RigidBody;
-
-template <class A, class B, class C>
-struct concat_joints;
-template <class... A, class... B, class... C>
-struct concat_joints<Joints<A...>, Joints<B...>, Joints<C...>> {
-  using type = Joints<A..., B..., C...>;
-};
-
-template <std::size_t... K>
-Bodies<Link<K>...> links(std::index_sequence<K...>);
-// Crank k (body k) on the ground at (k, 0); coupler k (body N + 1 + k) from the tip of crank k
-// to the tip of crank k + 1.
-template <std::size_t... K>
-Joints<Revolute<ground, static_cast<int>(K)>...> ground_pins(std::index_sequence<K...>);
-template <int Cranks, std::size_t... K>
-Joints<Revolute<static_cast<int>(K), Cranks + static_cast<int>(K)>...> left_pins(
-    std::index_sequence<K...>);
-template <int Cranks, std::size_t... K>
-Joints<Revolute<Cranks + static_cast<int>(K), static_cast<int>(K) + 1>...> right_pins(
-    std::index_sequence<K...>);
-
-}  // namespace detail
-
-/// The chain of N parallelograms: its scene type and how to build it.
-template <int N>
+/// The chain of N parallelograms: its model and the handles a run reads.
 struct Chain {
-  static constexpr int bars = N;
-  static constexpr int cranks = N + 1;      // bodies 0 .. N
-  static constexpr int bodies = 2 * N + 1;  // couplers N + 1 .. 2N
-  using BodyList = decltype(detail::links(std::make_index_sequence<bodies>{}));
-  using JointList = typename detail::concat_joints<
-      decltype(detail::ground_pins(std::make_index_sequence<cranks>{})),
-      decltype(detail::left_pins<cranks>(std::make_index_sequence<N>{})),
-      decltype(detail::right_pins<cranks>(std::make_index_sequence<N>{}))>::type;
-  using SceneT = Scene<double, BodyList, JointList, Effects<Gravity, QuadraticVelocity>>;
-  using State = typename SceneT::State;
-  static_assert(SceneT::nv == 6 * bodies && SceneT::nc == 5 * (cranks + 2 * N));
-
-  /// A slender 1 kg, 1 m rod along its body x axis, frame at its centre (1 cm square section).
-  static RigidBody rod() {
-    const double a = 0.01, transverse = (1.0 + a * a) / 12, axial = a * a / 6;
-    return RigidBody::rigid(1.0, Vector3d::Zero(),
-                            Vector3d(axial, transverse, transverse).asDiagonal());
-  }
-
-  /// The scene and its initial state: cranks vertical, couplers horizontal at y = 1, the crank
-  /// tips moving at +1 m/s (the benchmark's start). Every joint axis (marker z) is global z.
-  static SceneT make(State& s) {
-    SceneT scene;
-    // A crank's body x points along global y (up); body z = global z.
-    const Matrix3d crank_axes = (Matrix3d() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
-    flexstress::detail::for_each_index(
-        [&](auto k) {
-          constexpr int K = static_cast<int>(decltype(k)::value);
-          scene.template body<K>() = rod();
-          if constexpr (K < cranks) {
-            s.template coordinates<K>().position = Vector3d(K, 0.5, 0);
-            s.template coordinates<K>().theta = from_rotation_matrix<double>(crank_axes);
-            s.template velocity<K>() << 0.5, 0, 0, 0, 0, -1;  // w = -1 rad/s: tip at +1 m/s
-          } else {
-            s.template coordinates<K>().position = Vector3d(K - cranks + 0.5, 1.0, 0);
-            s.template velocity<K>() << 1, 0, 0, 0, 0, 0;
-          }
-        },
-        std::make_index_sequence<bodies>{});
-    flexstress::detail::for_each_index(
-        [&](auto k) {
-          constexpr int K = static_cast<int>(decltype(k)::value);
-          auto& j = scene.template joint<K>();
-          if constexpr (K < cranks) {  // ground pin of crank K
-            j.marker_i = fixed_marker<double>(Vector3d(K, 0, 0));
-            j.marker_j = make_marker(scene.template body<K>(), -1, Vector3d(-0.5, 0, 0));
-          } else if constexpr (K < cranks + N) {  // tip of crank c, left end of coupler c
-            constexpr int c = K - cranks;
-            j.marker_i = make_marker(scene.template body<c>(), -1, Vector3d(0.5, 0, 0));
-            j.marker_j = make_marker(scene.template body<cranks + c>(), -1, Vector3d(-0.5, 0, 0));
-          } else {  // right end of coupler c, tip of crank c + 1
-            constexpr int c = K - cranks - N;
-            j.marker_i = make_marker(scene.template body<cranks + c>(), -1, Vector3d(0.5, 0, 0));
-            j.marker_j = make_marker(scene.template body<c + 1>(), -1, Vector3d(0.5, 0, 0));
-          }
-        },
-        std::make_index_sequence<SceneT::num_joints>{});
-    return scene;
-  }
-
-  /// Integrator settings for the chain. Where the cranks pass the horizontal, the constraint
-  /// Jacobian loses rank: in a direction where its singular value is sigma, the augmented
-  /// Lagrangian's multiplier update contracts by about 1 / (1 + penalty_factor sigma^2) per
-  /// iteration. A penalty factor of 1e5 (default 1e3) keeps that below 1/2 except within about
-  /// 3 mrad of the singular configuration; the few steps closer than that are kept at the
-  /// iteration budget (their multipliers are ill-defined there; their positions are not), and
-  /// velocity projection removes what they leave in the velocities.
-  static typename ImplicitIntegrator<SceneT>::Settings settings(double h) {
-    typename ImplicitIntegrator<SceneT>::Settings set;
-    set.step = h;
-    set.penalty_factor = 1e5;
-    set.accept_at_iteration_limit = true;
-    set.project_velocities = true;
-    return set;
-  }
+  int bars = 0;
+  Model<double> model;
+  std::vector<BodyId> cranks;    ///< N + 1, crank k pinned to the ground at (k, 0)
+  std::vector<BodyId> couplers;  ///< N, coupler k from the tip of crank k to that of crank k + 1
+  std::vector<JointId> pins;     ///< the revolute joints: ground pins, left pins, right pins
+  JointId launch;                ///< drives the first crank until released (start())
 };
+
+/// A slender 1 kg, 1 m rod along its body x axis, frame at its centre (1 cm square section).
+inline BodyId add_rod(ModelBuilder<double>& b, const std::string& name) {
+  const double a = 0.01, transverse = (1.0 + a * a) / 12, axial = a * a / 6;
+  return b.add_rigid_body(name, 1.0, Vector3d::Zero(),
+                          Vector3d(axial, transverse, transverse).asDiagonal());
+}
+
+/// The chain at the benchmark's start: cranks vertical, couplers horizontal at y = 1. Every
+/// joint axis (marker z) is global z. Integrator settings: where the cranks pass the horizontal,
+/// the constraint Jacobian loses rank: in a direction where its singular value is sigma, the
+/// augmented Lagrangian's multiplier update contracts by about 1 / (1 + penalty_factor sigma^2)
+/// per iteration. A penalty factor of 1e5 (default 1e3) keeps that below 1/2 except within
+/// about 3 mrad of the singular configuration; the few steps closer than that are kept at the
+/// iteration budget (their multipliers are ill-defined there; their positions are not), and
+/// velocity projection removes what they leave in the velocities.
+inline Result<Chain> make_chain(int n, double h) {
+  Chain c;
+  c.bars = n;
+  ModelBuilder<double> b;
+  // A crank's body x points along global y (up); body z = global z.
+  const Matrix3d crank_axes = (Matrix3d() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
+  for (int k = 0; k <= n; ++k) {
+    c.cranks.push_back(add_rod(b, "crank " + std::to_string(k)));
+    b.set_initial_pose(c.cranks.back(), Vector3d(k, 0.5, 0),
+                       from_rotation_matrix<double>(crank_axes));
+  }
+  for (int k = 0; k < n; ++k) {
+    c.couplers.push_back(add_rod(b, "coupler " + std::to_string(k)));
+    b.set_initial_pose(c.couplers.back(), Vector3d(k + 0.5, 1.0, 0));
+  }
+  std::vector<MarkerId> root, tip;  // of the cranks
+  for (int k = 0; k <= n; ++k) {
+    const std::string name = "crank " + std::to_string(k);
+    const MarkerId ground = b.add_marker(name + " pivot", b.ground(), -1, Vector3d(k, 0, 0));
+    root.push_back(b.add_marker(name + " root", c.cranks[k], -1, Vector3d(-0.5, 0, 0)));
+    tip.push_back(b.add_marker(name + " tip", c.cranks[k], -1, Vector3d(0.5, 0, 0)));
+    c.pins.push_back(b.add_joint(name + " on the ground", JointKind::revolute, ground, root[k]));
+  }
+  std::vector<MarkerId> left, right;  // of the couplers
+  for (int k = 0; k < n; ++k) {
+    const std::string name = "coupler " + std::to_string(k);
+    left.push_back(b.add_marker(name + " left", c.couplers[k], -1, Vector3d(-0.5, 0, 0)));
+    right.push_back(b.add_marker(name + " right", c.couplers[k], -1, Vector3d(0.5, 0, 0)));
+    c.pins.push_back(b.add_joint(name + " left pin", JointKind::revolute, tip[k], left[k]));
+  }
+  for (int k = 0; k < n; ++k)
+    c.pins.push_back(b.add_joint("coupler " + std::to_string(k) + " right pin", JointKind::revolute,
+                                 right[k], tip[k + 1]));
+  // The model has no initial velocities: the first crank is driven at -1 rad/s (its tip at
+  // +1 m/s) while initialize() projects the velocities, then released (start()). Added last,
+  // so the pins' rows are those of the chain alone.
+  const MarkerId pivot = b.add_marker("launch pivot", b.ground(), -1);
+  c.launch = b.add_driver("launch", JointKind::revolute_driver, pivot, root[0],
+                          MotionLaw<double>::constant_acceleration(std::acos(0.0), -1.0));
+  b.set_gravity(Vector3d(0, -9.81, 0));
+  auto& set = b.settings();
+  set.step = h;
+  set.penalty_factor = 1e5;
+  set.accept_at_iteration_limit = true;
+  set.project_velocities = true;
+  auto m = b.finalize();
+  if (!m) return m.error();
+  c.model = std::move(*m);
+  return c;
+}
+
+/// Consistent initial conditions at the benchmark's start: assembled with the launch driver on
+/// (velocities from the first crank's -1 rad/s), then again with it released, so that the
+/// accelerations and multipliers are those of the free chain.
+inline Status start(const Chain& c, Data<double>& d) {
+  if (Status st = initialize(c.model, d); !st) return st;
+  set_joint_active(c.model, d, c.launch, false);
+  return initialize(c.model, d);
+}
 
 /// Planar angle of a body's x axis.
-inline double heading(const EulerParameters<double>& theta) {
-  const Matrix3d a = rotation_matrix(theta);
+inline double heading(const Chain& c, const Data<double>& d, BodyId body) {
+  const Matrix3d a = rotation_matrix(body_orientation(c.model, d, body));
   return std::atan2(a(1, 0), a(0, 0));
 }
 
@@ -150,21 +128,15 @@ struct Monitor {
   double budget_angle = 0;  ///< largest crank angle from the horizontal at a budget-kept step
   double first_crank = 0;   ///< current angle of the first crank (rad)
 
-  template <class ChainT>
-  void record(const typename ChainT::State& s, double energy, double e0, bool kept_at_budget) {
-    using flexstress::detail::for_each_index;
+  void record(const Chain& c, const Data<double>& d, double energy, double e0,
+              bool kept_at_budget) {
     constexpr double two_pi = 6.283185307179586;
-    const double a0 = heading(s.template coordinates<0>().theta);
-    for_each_index(
-        [&](auto k) {
-          constexpr int K = static_cast<int>(decltype(k)::value);
-          const double a = heading(s.template coordinates<K>().theta);
-          if constexpr (K < ChainT::cranks)
-            crank_spread = std::max(crank_spread, std::abs(std::remainder(a - a0, two_pi)));
-          else
-            coupler_tilt = std::max(coupler_tilt, std::abs(std::remainder(a, two_pi)));
-        },
-        std::make_index_sequence<ChainT::bodies>{});
+    const double a0 = heading(c, d, c.cranks.front());
+    for (const BodyId k : c.cranks)
+      crank_spread =
+          std::max(crank_spread, std::abs(std::remainder(heading(c, d, k) - a0, two_pi)));
+    for (const BodyId k : c.couplers)
+      coupler_tilt = std::max(coupler_tilt, std::abs(std::remainder(heading(c, d, k), two_pi)));
     energy_error = std::max(energy_error, std::abs(energy - e0));
     if (started_ && (std::sin(a0) > 0) != (std::sin(first_crank) > 0)) ++singular_passes;
     started_ = true;

@@ -12,10 +12,9 @@
 
 #include <cmath>
 
-#include <flexstress/dynamics/joints.hpp>
 #include <flexstress/dynamics/motion_laws.hpp>
-#include <flexstress/dynamics/scene.hpp>
 #include <flexstress/fe/beam_line.hpp>
+#include <flexstress/model/all.hpp>
 #include <flexstress/reduction/modal_body_data.hpp>
 #include <flexstress/reduction/modal_geometric_stiffness.hpp>
 
@@ -99,29 +98,59 @@ inline Result<Beam> make_beam(const Spec& spec, int modes, Frame frame = Frame::
   return b;
 }
 
-/// The scene: ground, the beam, a revolute joint at the hub (axis z) and its angle driver.
-template <int N, class EffectList, int StorageLimit = fixed_storage_limit>
-using SpinUpScene = typename Scene<double, Bodies<FFRFBody<N>>,
-                                   Joints<Revolute<ground, 0>, RevoluteDriver<ground, 0, HubAngle>>,
-                                   EffectList>::template with_storage_limit<StorageLimit>;
+/// The hub angle as a motion law's callback (user data: the Spec).
+inline void hub_angle(double t, double* out, void* user) {
+  const Spec& spec = *static_cast<const Spec*>(user);
+  const MotionValue<double> v = HubAngle<double>{spec.spin_up_time, spec.final_rate}(t);
+  out[0] = v.value;
+  out[1] = v.rate;
+  out[2] = v.acceleration;
+}
 
-template <class SceneT>
-Result<SceneT> make_scene(const Beam& beam, const Spec& spec) {
-  SceneT scene;
-  using Body = typename SceneT::template BodyType<0>;
-  auto body = Body::from_modal_data(beam.data);
-  if (!body) return body.error();
-  if (Status s = body->set_geometric_stiffness(beam.geometric); !s) return s.error();
-  scene.template body<0>() = std::move(*body);
-  const auto hub_ground = fixed_marker<double>(Vector3d::Zero());
-  const auto hub_beam = make_marker(scene.template body<0>(), beam.hub_node, Vector3d::Zero());
-  scene.template joint<0>().marker_i = hub_ground;
-  scene.template joint<0>().marker_j = hub_beam;
-  scene.template joint<1>().marker_i = hub_ground;
-  scene.template joint<1>().marker_j = hub_beam;
-  scene.template joint<1>().params.law = HubAngle<double>{spec.spin_up_time, spec.final_rate};
-  scene.gravity.setZero();
-  return scene;
+/// The model: the beam on a revolute joint at the hub (axis z) driven by the hub angle, no
+/// gravity; with or without geometric stiffening. Markers at the hub and the tip read the
+/// deflection.
+struct SpinUp {
+  Model<double> model;
+  BodyId beam;
+  MarkerId hub, tip;
+  JointId hinge, driver;
+};
+
+/// `spec` must outlive the model (the hub law reads it).
+inline Result<SpinUp> make_model(const Beam& beam, const Spec& spec, bool stiffening, int modes) {
+  ModelBuilder<double> b;
+  SpinUp s;
+  s.beam = b.add_flexible_body("beam", beam.data, modes);
+  if (stiffening) b.add_geometric_stiffening(s.beam, beam.geometric);
+  const MarkerId hub_ground = b.add_marker("hub on ground", b.ground(), -1);
+  s.hub = b.add_marker("hub", s.beam, beam.hub_node);
+  s.tip = b.add_marker("tip", s.beam, beam.tip_node);
+  s.hinge = b.add_joint("hub", JointKind::revolute, hub_ground, s.hub);
+  s.driver = b.add_driver("hub angle", JointKind::revolute_driver, hub_ground, s.hub,
+                          MotionLaw<double>::from_callback(&hub_angle, const_cast<Spec*>(&spec)));
+  // The beam spins about its intermediate principal axis: without velocity projection the
+  // velocity error normal to the joints grows (docs/dynamics.md, "Spinning bodies").
+  b.settings().project_velocities = true;
+  auto model = b.finalize();
+  if (!model) return model.error();
+  s.model = std::move(*model);
+  return s;
+}
+
+/// The tip's deflection in the plane of rotation relative to the hub's tangent (the hub node's
+/// own rotation removed; zero in the attached frame) and its axial stretch, from the elastic
+/// displacements of the two markers in the body frame.
+struct TipDeflection {
+  double in_plane = 0, axial = 0;
+};
+inline TipDeflection tip_deflection(const SpinUp& s, const Data<double>& d, double length) {
+  const flexstress::Frame<double> hub = marker_frame_in_body(s.model, d, s.hub);
+  const flexstress::Frame<double> tip = marker_frame_in_body(s.model, d, s.tip);
+  // Elastic parts: the undeformed tip lies `length` along x from the hub, axes aligned.
+  const Vector3d rel = tip.origin - hub.origin - Vector3d(length, 0, 0);
+  const double hub_turn = hub.axes(1, 0);  // the hub's x axis turned about z
+  return {rel.y() - hub_turn * length, rel.x()};
 }
 
 }  // namespace spin_up

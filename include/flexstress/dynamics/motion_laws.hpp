@@ -108,6 +108,9 @@ class TableLaw {
   }
 
   double start_time() const { return t_.front(); }
+  /// The rows it was made from (create(times(), values()) makes the same law).
+  const std::vector<double>& times() const { return t_; }
+  const std::vector<double>& values() const { return s_; }
   double end_time() const { return t_.back(); }
 
  private:

@@ -8,16 +8,21 @@
 // max_runtime_modes runs the same code with N = Eigen::Dynamic in bounded storage.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "flexstress/core/binary_io.hpp"
 #include "flexstress/core/euler_parameters.hpp"
+#include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/dynamics/body_model.hpp"
 #include "flexstress/dynamics/marker.hpp"
 #include "flexstress/model/joint_rows.hpp"
+#include "flexstress/reduction/modal_geometric_stiffness_data.hpp"
 
 namespace flexstress {
 
@@ -30,6 +35,17 @@ struct BodyEffects {
   bool gravity = false;
   bool quadratic_velocity = true;
   bool modal_damping = false;
+  /// K_G p under the body's own inertial and gravity loads (BodyModel::geometric_stiffness).
+  bool geometric_stiffening = false;
+};
+
+/// A marker moved at run time (anchor_joint_at): its constant body-frame parts c of the origin
+/// and the three axes replace the model's; its mode shapes stay.
+template <class Scalar>
+struct MarkerAnchor {
+  bool active = false;
+  std::array<Vec3<Scalar>, 4> c{Vec3<Scalar>::Zero(), Vec3<Scalar>::Zero(), Vec3<Scalar>::Zero(),
+                                Vec3<Scalar>::Zero()};
 };
 
 /// A body with its markers, for a compile-time (or bounded runtime) mode count.
@@ -44,13 +60,27 @@ struct BodyHolder {
 template <class Scalar>
 struct BodyKernels {
   int fixed_modes;  ///< the N instantiated (Eigen::Dynamic: the bounded fallback)
-  /// Evaluates markers [first, first + count) of the body (their parts[k] only).
+  /// A hash of the body's data (mass properties, modal matrices, markers): checkpoints tell
+  /// models apart by it. Setup-time (allocates).
+  std::uint64_t (*fingerprint)(const void* holder);
+  /// Evaluates the body's markers (their parts[k] only), moved where anchors[k] is active.
   void (*markers)(const void* holder, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
-                  bool rates, const unsigned* parts, MarkerState<Scalar>* out);
-  /// Mass matrix block (nv x nv, column-major) and the applied force Q_e - Q_v - K p - D p_dot.
-  void (*dynamics)(const void* holder, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
-                   const BodyEffects& effects, const Vec3<Scalar>& gravity, Scalar* mass,
-                   Scalar* force);
+                  bool rates, const unsigned* parts, const MarkerAnchor<Scalar>* anchors,
+                  MarkerState<Scalar>* out);
+  /// Evaluates one marker in full (all parts and rates), moved if `anchor` is active.
+  void (*marker)(const void* holder, int marker, const Scalar* q, const Scalar* v,
+                 const Mat3<Scalar>& a, const MarkerAnchor<Scalar>& anchor,
+                 MarkerState<Scalar>& out);
+  /// The constant parts c that put marker `marker` at the global origin and axes of `target`
+  /// at coordinates q: c = A^T (value - R) - Psi p for the origin, A^T value - Psi p for axes.
+  void (*anchor)(const void* holder, int marker, const Scalar* q, const Mat3<Scalar>& a,
+                 const MarkerState<Scalar>& target, MarkerAnchor<Scalar>& out);
+  /// Mass matrix block (nv x nv, column-major) and the applied force
+  /// Q_e - Q_v - (K + K_G) p - D p_dot; with geometric stiffening K_G (modes x modes,
+  /// column-major) is written to `geometric`, its load factors from the accelerations v_dot.
+  void (*dynamics)(const void* holder, const Scalar* q, const Scalar* v, const Scalar* v_dot,
+                   const Mat3<Scalar>& a, const BodyEffects& effects, const Vec3<Scalar>& gravity,
+                   Scalar* mass, Scalar* force, Scalar* geometric);
   /// Writes `count` Jacobian rows of marker `marker` into a row-major block (count x nv):
   /// [rigid | sum_v weight_v^T Psi_v], v over the marker vectors in `parts` (MarkerParts).
   void (*jacobian_rows)(const void* holder, int marker, unsigned parts,
@@ -67,15 +97,19 @@ struct BodyKernels {
   /// leading dimension ld.
   void (*add_gram)(int nv, const Scalar* rows, int count, const Scalar* other, int nc, Scalar alpha,
                    Scalar* s, int ld);
-  /// block += k_factor K + c_factor D on the modal block of an iteration matrix (column-major,
-  /// leading dimension ld, pointing at the body's first modal row and column).
+  /// block += k_factor (K + K_G) + c_factor D on the modal block of an iteration matrix
+  /// (column-major, leading dimension ld, pointing at the body's first modal row and column);
+  /// K_G from the last dynamics, or none if `geometric` is null.
   void (*add_stiffness_damping)(const void* holder, Scalar k_factor, Scalar c_factor, bool damping,
-                                Scalar* block, int ld);
+                                const Scalar* geometric, Scalar* block, int ld);
   /// Kinetic energy 1/2 v^T M v, elastic energy 1/2 p^T K p, the gravity potential and the
   /// power p_dot^T D p_dot the modal damping takes out.
   void (*energies)(const void* holder, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
                    const Vec3<Scalar>& gravity, Scalar* kinetic, Scalar* elastic, Scalar* potential,
                    Scalar* damping_power);
+  /// Linear momentum and angular momentum about the global origin (both global).
+  void (*momentum)(const void* holder, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
+                   Vec3<Scalar>* linear, Vec3<Scalar>* angular);
 };
 
 namespace detail {
@@ -102,26 +136,107 @@ struct BodyKernelImpl {
   }
 
   static void markers(const void* h, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
-                      bool rates, const unsigned* parts, MarkerState<Scalar>* out) {
+                      bool rates, const unsigned* parts, const MarkerAnchor<Scalar>* anchors,
+                      MarkerState<Scalar>* out) {
+    markers_of(h, q, v, a, rates, parts, anchors, 0, static_cast<int>(holder(h).markers.size()),
+               out);
+  }
+  /// Markers [first, last); parts, anchors and out point at marker `first`'s.
+  static void markers_of(const void* h, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
+                         bool rates, const unsigned* parts, const MarkerAnchor<Scalar>* anchors,
+                         int first, int last, MarkerState<Scalar>* out) {
     const Holder& hb = holder(h);
     Kin k;
     kinematics(hb.body, q, v, a, k);
     MarkerEval<Scalar, N> e;
-    for (std::size_t m = 0; m < hb.markers.size(); ++m) {
-      if (parts[m] == 0) continue;
-      e.evaluate(hb.markers[m], k, rates || (parts[m] & marker_needs_rates) != 0,
-                 parts[m] & MarkerParts::all);
-      out[m].origin = e.origin;
-      out[m].x = e.x;
-      out[m].y = e.y;
-      out[m].z = e.z;
-      out[m].rotation = a;
+    for (int index = first; index < last; ++index) {
+      const auto m = static_cast<std::size_t>(index);
+      const unsigned p = parts[index - first];
+      if (p == 0) continue;
+      const bool with_rates = rates || (p & marker_needs_rates) != 0;
+      const MarkerAnchor<Scalar>& anchor = anchors[index - first];
+      if (anchor.active) {
+        Marker<Scalar, N> moved = hb.markers[m];
+        moved.origin.c = anchor.c[0];
+        moved.x.c = anchor.c[1];
+        moved.y.c = anchor.c[2];
+        moved.z.c = anchor.c[3];
+        e.evaluate(moved, k, with_rates, p & MarkerParts::all);
+      } else {
+        e.evaluate(hb.markers[m], k, with_rates, p & MarkerParts::all);
+      }
+      out[index - first].origin = e.origin;
+      out[index - first].x = e.x;
+      out[index - first].y = e.y;
+      out[index - first].z = e.z;
+      out[index - first].rotation = a;
     }
   }
 
-  static void dynamics(const void* h, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
-                       const BodyEffects& effects, const Vec3<Scalar>& gravity, Scalar* mass,
-                       Scalar* force) {
+  static std::uint64_t fingerprint(const void* h) {
+    const Holder& hb = holder(h);
+    binary::Writer w;
+    const auto put = [&](const auto& m) {
+      for (Index i = 0; i < m.size(); ++i) w.put(m.data()[i]);
+    };
+    // The mass matrix at rest (p = 0, frame at the origin, not turned): mass, first moment,
+    // inertia, and the modal couplings and modal mass.
+    Kin k;
+    k.position.setZero();
+    k.rotation.setIdentity();
+    k.velocity.setZero();
+    k.omega.setZero();
+    if constexpr (N != 0) {
+      k.p = ModalSizes<Scalar, N>::VecN::Zero(hb.body.modes());
+      k.p_dot = k.p;
+    }
+    typename Body::Terms terms;
+    hb.body.compute_terms(k, terms);
+    Mat<Scalar, Body::nv, Body::nv> mass(hb.body.velocities(), hb.body.velocities());
+    hb.body.mass_matrix(k, terms, mass);
+    put(mass);
+    w.put(static_cast<std::int32_t>(hb.body.modes()));
+    put(hb.body.modal_stiffness());
+    put(hb.body.modal_damping());
+    for (const auto& mk : hb.markers)
+      for (const BodyVector<Scalar, N>* v : {&mk.origin, &mk.x, &mk.y, &mk.z}) {
+        put(v->c);
+        put(v->psi);
+      }
+    return binary::fnv1a(w.buffer.data(), w.buffer.size());
+  }
+
+  static void marker(const void* h, int index, const Scalar* q, const Scalar* v,
+                     const Mat3<Scalar>& a, const MarkerAnchor<Scalar>& anchor,
+                     MarkerState<Scalar>& out) {
+    const unsigned parts = MarkerParts::all;
+    markers_of(h, q, v, a, true, &parts, &anchor, index, index + 1, &out);
+  }
+
+  static void anchor(const void* h, int marker, const Scalar* q, const Mat3<Scalar>& a,
+                     const MarkerState<Scalar>& target, MarkerAnchor<Scalar>& out) {
+    const Holder& hb = holder(h);
+    const auto& mk = hb.markers[static_cast<std::size_t>(marker)];
+    const Vec3<Scalar> position = Eigen::Map<const Vec3<Scalar>>(q);
+    const BodyVector<Scalar, N>* vectors[4] = {&mk.origin, &mk.x, &mk.y, &mk.z};
+    const Vec3<Scalar>* values[4] = {&target.origin.value, &target.x.value, &target.y.value,
+                                     &target.z.value};
+    for (std::size_t v = 0; v < 4; ++v) {
+      const Vec3<Scalar> global = v == 0 ? Vec3<Scalar>(*values[v] - position) : *values[v];
+      Vec3<Scalar> local = a.transpose() * global;
+      if constexpr (N != 0) {
+        const int n = hb.body.modes();
+        local -= vectors[v]->psi * Eigen::Map<const typename ModalSizes<Scalar, N>::VecN>(q + 7, n);
+      }
+      out.c[v] = local;
+    }
+    out.active = true;
+  }
+
+  static void dynamics(const void* h, const Scalar* q, const Scalar* v, const Scalar* v_dot,
+                       const Mat3<Scalar>& a, const BodyEffects& effects,
+                       const Vec3<Scalar>& gravity, Scalar* mass, Scalar* force,
+                       Scalar* geometric) {
     const Body& body = holder(h).body;
     const int n = body.modes(), nv = 6 + n;
     Kin k;
@@ -141,7 +256,19 @@ struct BodyKernelImpl {
       auto fp = fb.template segment<N>(6, n);
       fp.noalias() -= body.modal_stiffness().lazyProduct(k.p);
       if (effects.modal_damping) fp.noalias() -= body.modal_damping().lazyProduct(k.p_dot);
+      if (effects.geometric_stiffening) {
+        // The load factors of the current iterate: its accelerations (the integrator keeps
+        // v_dot at the iterate), less gravity, and its angular velocity.
+        const Eigen::Map<const typename Body::VecV> vd(v_dot, nv);
+        Vec3<Scalar> a_g = a.transpose() * vd.template head<3>();
+        if (effects.gravity) a_g.noalias() -= a.transpose() * gravity;
+        typename Body::MatN kg;
+        body.geometric_stiffness(a_g, vd.template segment<3>(3), k.omega, kg);
+        fp.noalias() -= kg.lazyProduct(k.p);
+        Eigen::Map<typename Body::MatN>(geometric, n, n) = kg;
+      }
     }
+    (void)v_dot, (void)geometric;
     Eigen::Map<typename Body::VecV>(force, nv) = fb;
   }
 
@@ -195,7 +322,7 @@ struct BodyKernelImpl {
   }
 
   static void add_stiffness_damping(const void* h, Scalar k_factor, Scalar c_factor, bool damping,
-                                    Scalar* block, int ld) {
+                                    const Scalar* geometric, Scalar* block, int ld) {
     if constexpr (N != 0) {
       const Body& body = holder(h).body;
       const int n = body.modes();
@@ -203,8 +330,11 @@ struct BodyKernelImpl {
           block, n, n, Eigen::OuterStride<>(ld));
       b += k_factor * body.modal_stiffness();
       if (damping) b += c_factor * body.modal_damping();
+      if (geometric != nullptr)
+        b += k_factor * Eigen::Map<const typename Body::MatN>(geometric, n, n);
     } else {
-      (void)h, (void)k_factor, (void)c_factor, (void)damping, (void)block, (void)ld;
+      (void)h, (void)k_factor, (void)c_factor, (void)damping, (void)geometric, (void)block,
+          (void)ld;
     }
   }
 
@@ -221,16 +351,19 @@ struct BodyKernelImpl {
     if constexpr (N != 0) *damping_power = k.p_dot.dot(body.modal_damping() * k.p_dot);
   }
 
-  static constexpr BodyKernels<Scalar> table{N,
-                                             &markers,
-                                             &dynamics,
-                                             &jacobian_rows,
-                                             &mass_times,
-                                             &transpose_times,
-                                             &rows_times,
-                                             &add_gram,
-                                             &add_stiffness_damping,
-                                             &energies};
+  static void momentum(const void* h, const Scalar* q, const Scalar* v, const Mat3<Scalar>& a,
+                       Vec3<Scalar>* linear, Vec3<Scalar>* angular) {
+    const Body& body = holder(h).body;
+    Kin k;
+    kinematics(body, q, v, a, k);
+    *linear = body.linear_momentum(k);
+    *angular = body.angular_momentum(k);
+  }
+
+  static constexpr BodyKernels<Scalar> table{
+      N,         &fingerprint,           &markers,    &marker,          &anchor,
+      &dynamics, &jacobian_rows,         &mass_times, &transpose_times, &rows_times,
+      &add_gram, &add_stiffness_damping, &energies,   &momentum};
 
   // ---- setup (may allocate) ----------------------------------------------------------------
   /// Adds a marker at `node` (-1: the body frame) with a rigid offset and axes; -1 if the body
@@ -240,6 +373,15 @@ struct BodyKernelImpl {
     if (node >= hb.body.num_nodes() || node < -1) return -1;
     hb.markers.push_back(make_marker(hb.body, node, offset, axes));
     return static_cast<int>(hb.markers.size()) - 1;
+  }
+  /// Gives the body its modal geometric stiffness (reduction/modal_geometric_stiffness.hpp).
+  static Status set_geometric_stiffness(void* h, const reduction::ModalGeometricStiffness& g) {
+    if constexpr (N == 0) {
+      (void)h, (void)g;
+      return make_error(ErrorCode::invalid_argument, "a rigid body has no geometric stiffness");
+    } else {
+      return static_cast<Holder*>(h)->body.set_geometric_stiffness(g);
+    }
   }
 };
 

@@ -3,7 +3,7 @@
 // that includes the model headers then declares the double and float instantiations extern:
 // it parses the templates but does not instantiate and optimize them again (the step, the
 // equilibrium solver and the per-mode-count body kernels are most of a unit's compile time).
-// src/model_instantiations.cpp holds the matching definitions. Without FLEXSTRESS_COMPILED
+// src/compiled/*.cpp hold the matching definitions. Without FLEXSTRESS_COMPILED
 // this header declares nothing and the library stays header-only.
 #pragma once
 
@@ -12,9 +12,11 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "flexstress/model/checkpoint.hpp"
 #include "flexstress/model/data.hpp"
 #include "flexstress/model/energy_balance.hpp"
 #include "flexstress/model/equilibrium.hpp"
+#include "flexstress/model/explicit_step.hpp"
 #include "flexstress/model/implicit_step.hpp"
 #include "flexstress/model/model.hpp"
 #include "flexstress/model/model_builder.hpp"
@@ -37,7 +39,7 @@
   FLEXSTRESS_COMPILED_FIXED(X, S)         \
   X(S, Eigen::Dynamic)
 
-// The model layer's templates for one Scalar; D is `extern template` or `template`.
+// A body kernel's templates; D is `extern template` or `template`.
 #define FLEXSTRESS_COMPILED_KERNEL(D, S, N)                                            \
   D struct detail::BodyKernelImpl<S, N>;                                               \
   D const BodyKernels<S>& body_kernels<S, N>();                                        \
@@ -49,47 +51,71 @@
   D void detail::adopt_flexible<S, N>(const reduction::ModalBodyData&, int, bool&, \
                                       std::shared_ptr<void>&, const BodyKernels<S>*&, Error&);
 
-#define FLEXSTRESS_COMPILED_MODEL(D, S)                                                        \
-  D struct MotionLaw<S>;                                                                       \
-  D class Model<S>;                                                                            \
-  D struct Data<S>;                                                                            \
-  D class ModelBuilder<S>;                                                                     \
-  D void update_kinematics<S>(const Model<S>&, Data<S>&);                                      \
-  D void update_markers<S>(const Model<S>&, Data<S>&, bool);                                   \
-  D void update_constraints<S>(const Model<S>&, Data<S>&);                                     \
-  D void add_marker_force<S>(const Model<S>&, Data<S>&, int, const Vec3<S>&, S);               \
-  D void update_dynamics<S>(const Model<S>&, Data<S>&);                                        \
-  D void evaluate<S>(const Model<S>&, Data<S>&, bool);                                         \
-  D int nonfinite_body<S>(const Model<S>&, const Data<S>&);                                    \
-  D void set_step_size<S>(Data<S>&, S);                                                        \
-  D Status initialize<S>(const Model<S>&, Data<S>&, int);                                      \
-  D StepStatus step<S>(const Model<S>&, Data<S>&);                                             \
-  D Eigen::MatrixXd dense_jacobian<S>(const Model<S>&, const Data<S>&);                        \
-  D Status solve_static_equilibrium<S>(const Model<S>&, Data<S>&,                              \
-                                       const StaticEquilibriumOptions&);                       \
-  D Result<Linearization> linearize<S>(const Model<S>&, Data<S>&, double);                     \
-  D Vec3<S> body_position<S>(const Model<S>&, const Data<S>&, BodyId);                         \
-  D EulerParameters<S> body_orientation<S>(const Model<S>&, const Data<S>&, BodyId);           \
-  D Vec3<S> body_velocity<S>(const Model<S>&, const Data<S>&, BodyId);                         \
-  D Vec3<S> body_angular_velocity<S>(const Model<S>&, const Data<S>&, BodyId);                 \
-  D Eigen::Matrix<S, Eigen::Dynamic, 1> modal_coordinates<S>(const Model<S>&, const Data<S>&,  \
-                                                             BodyId);                          \
-  D Frame<S> marker_frame<S>(const Model<S>&, const Data<S>&, MarkerId);                       \
-  D Reaction<S> joint_reaction<S>(const Model<S>&, const Data<S>&, JointId);                   \
-  D S constraint_violation<S>(const Model<S>&, const Data<S>&);                                \
-  D Energy<S> energy<S>(const Model<S>&, Data<S>&);                                            \
-  D void set_joint_active<S>(const Model<S>&, Data<S>&, JointId, bool);                        \
-  D bool joint_active<S>(const Data<S>&, JointId);                                             \
-  D StepStatus set_input<S>(const Model<S>&, Data<S>&, InputId, S, S, S);                      \
-  D Status set_law<S>(const Model<S>&, Data<S>&, JointId, MotionLaw<S>);                       \
-  D const MarkerState<S>& force_marker<S>(const Model<S>&, const Data<S>&, int, bool);         \
-  D S valve_command<S>(const Model<S>&, const Data<S>&, int);                                  \
-  D Vec3<S> force_element_force<S>(const Model<S>&, const Data<S>&, int);                      \
-  D void update_force_states<S>(const Model<S>&, Data<S>&, bool);                              \
-  D Eigen::Matrix<S, 12, 1> body_inertia_coordinates<S>(const Model<S>&, const Data<S>&, int); \
-  D StepStatus evaluate_outputs<S>(const Model<S>&, Data<S>&, bool);                           \
-  D S meter_damage<S>(Data<S>&, MeterId, fatigue::CycleClosure);                               \
-  D class EnergyBalance<S>;
+// The model layer's templates for one Scalar, in two parts compiled apart (each unit stays
+// small): what builds and reads a model, and what evaluates and steps it. D is
+// `extern template` or `template`.
+#define FLEXSTRESS_COMPILED_MODEL_SETUP(D, S)                                                     \
+  D struct MotionLaw<S>;                                                                          \
+  D class Model<S>;                                                                               \
+  D struct Data<S>;                                                                               \
+  D class ModelBuilder<S>;                                                                        \
+  D Vec3<S> body_position<S>(const Model<S>&, const Data<S>&, BodyId);                            \
+  D EulerParameters<S> body_orientation<S>(const Model<S>&, const Data<S>&, BodyId);              \
+  D Vec3<S> body_velocity<S>(const Model<S>&, const Data<S>&, BodyId);                            \
+  D Vec3<S> body_angular_velocity<S>(const Model<S>&, const Data<S>&, BodyId);                    \
+  D DataSegment<S> modal_coordinates<S>(const Model<S>&, const Data<S>&, BodyId);                 \
+  D DataSegment<S> modal_velocities<S>(const Model<S>&, const Data<S>&, BodyId);                  \
+  D MarkerState<S> marker_state<S>(const Model<S>&, const Data<S>&, MarkerId);                    \
+  D Frame<S> marker_frame<S>(const Model<S>&, const Data<S>&, MarkerId);                          \
+  D Frame<S> marker_frame_in_body<S>(const Model<S>&, const Data<S>&, MarkerId);                  \
+  D Reaction<S> joint_reaction<S>(const Model<S>&, const Data<S>&, JointId);                      \
+  D S constraint_violation<S>(const Model<S>&, const Data<S>&);                                   \
+  D Energy<S> energy<S>(const Model<S>&, Data<S>&);                                               \
+  D Energy<S> body_energy<S>(const Model<S>&, const Data<S>&, BodyId);                            \
+  D void set_joint_active<S>(const Model<S>&, Data<S>&, JointId, bool);                           \
+  D bool joint_active<S>(const Data<S>&, JointId);                                                \
+  D Status anchor_joint_at<S>(const Model<S>&, Data<S>&, JointId);                                \
+  D Momentum<S> momentum<S>(const Model<S>&, const Data<S>&, BodyId);                             \
+  D S driver_effort<S>(const Model<S>&, const Data<S>&, JointId);                                 \
+  D JointEquations<S> joint_equations<S>(const Model<S>&, const Data<S>&, JointId);               \
+  D void set_body_velocity<S>(const Model<S>&, Data<S>&, BodyId, const Vec3<S>&, const Vec3<S>&); \
+  D StepStatus set_input<S>(const Model<S>&, Data<S>&, InputId, S, S, S);                         \
+  D Status set_law<S>(const Model<S>&, Data<S>&, JointId, MotionLaw<S>);                          \
+  D Eigen::Matrix<S, 12, 1> body_inertia_coordinates<S>(const Model<S>&, const Data<S>&, int);    \
+  D StepStatus evaluate_outputs<S>(const Model<S>&, Data<S>&, bool);                              \
+  D S meter_damage<S>(Data<S>&, MeterId, fatigue::CycleClosure);                                  \
+  D std::vector<ModelPart> describe_model<S>(const Model<S>&);                                    \
+  D Result<std::vector<unsigned char>> save_checkpoint<S>(const Model<S>&, const Data<S>&);       \
+  D Status restore_checkpoint<S>(const Model<S>&, Data<S>&, const unsigned char*, std::size_t,    \
+                                 const std::string&);
+
+#define FLEXSTRESS_COMPILED_MODEL_STEP(D, S)                                                 \
+  D void update_kinematics<S>(const Model<S>&, Data<S>&);                                    \
+  D void update_markers<S>(const Model<S>&, Data<S>&, bool);                                 \
+  D void update_constraints<S>(const Model<S>&, Data<S>&);                                   \
+  D void add_marker_load<S>(const Model<S>&, Data<S>&, int, const Vec3<S>&, const Vec3<S>*); \
+  D void update_dynamics<S>(const Model<S>&, Data<S>&);                                      \
+  D void evaluate<S>(const Model<S>&, Data<S>&, bool);                                       \
+  D int nonfinite_body<S>(const Model<S>&, const Data<S>&);                                  \
+  D void set_step_size<S>(Data<S>&, S);                                                      \
+  D Status initialize<S>(const Model<S>&, Data<S>&, int);                                    \
+  D StepStatus step<S>(const Model<S>&, Data<S>&);                                           \
+  D Status set_settings<S>(const Model<S>&, Data<S>&, const ImplicitSettings<S>&);           \
+  D Eigen::MatrixXd dense_jacobian<S>(const Model<S>&, const Data<S>&);                      \
+  D Status solve_static_equilibrium<S>(const Model<S>&, Data<S>&,                            \
+                                       const StaticEquilibriumOptions&);                     \
+  D Result<Linearization> linearize<S>(const Model<S>&, Data<S>&, double);                   \
+  D const MarkerState<S>& force_marker<S>(const Model<S>&, const Data<S>&, int, bool);       \
+  D S valve_command<S>(const Model<S>&, const Data<S>&, int);                                \
+  D Vec3<S> force_element_force<S>(const Model<S>&, const Data<S>&, int);                    \
+  D void point_load<S>(const Model<S>&, const Data<S>&, int, Vec3<S>&, Vec3<S>&);            \
+  D void update_force_states<S>(const Model<S>&, Data<S>&, bool);                            \
+  D class EnergyBalance<S>;                                                                  \
+  D StepStatus explicit_step<S>(const Model<S>&, Data<S>&, const ExplicitSettings<S>&);
+
+#define FLEXSTRESS_COMPILED_MODEL(D, S) \
+  FLEXSTRESS_COMPILED_MODEL_SETUP(D, S) \
+  FLEXSTRESS_COMPILED_MODEL_STEP(D, S)
 
 #define FLEXSTRESS_COMPILED_KERNEL_EXTERN(S, N) FLEXSTRESS_COMPILED_KERNEL(extern template, S, N)
 #define FLEXSTRESS_COMPILED_ADOPT_EXTERN(S, N) FLEXSTRESS_COMPILED_ADOPT(extern template, S, N)

@@ -35,10 +35,11 @@ struct Data {
 
   // ---- runtime changes (by handle: set_joint_active, set_law, set_input) ------------------
   std::vector<unsigned char> joint_active;
-  std::vector<MotionLaw<Scalar>> laws;      ///< the drivers' current laws
-  std::vector<MotionValue<Scalar>> inputs;  ///< by InputId
-  std::vector<unsigned char> input_set;     ///< whether set_input was called for it
-  std::uint64_t revision = 0;               ///< counts runtime changes to the topology
+  std::vector<MotionLaw<Scalar>> laws;        ///< the drivers' current laws
+  std::vector<MotionValue<Scalar>> inputs;    ///< by InputId
+  std::vector<unsigned char> input_set;       ///< whether set_input was called for it
+  std::vector<MarkerAnchor<Scalar>> anchors;  ///< by marker slot (anchor_joint_at)
+  std::uint64_t revision = 0;                 ///< counts runtime changes to the topology
   /// Internal states of the force elements (hydraulic chamber pressures), by ForceId: the
   /// last accepted step's.
   std::vector<HydraulicState<Scalar>> force_states;
@@ -48,11 +49,20 @@ struct Data {
   std::vector<DamageMeter<Scalar>> meters;  ///< by MeterId
 
   // ---- workspace (what an evaluation writes) -----------------------------------------------
+  /// The ground frame at t (prescribed motion): origin, its velocity and acceleration, rotation,
+  /// angular velocity and acceleration (global). At rest unless the model moves it.
+  struct Ground {
+    Vec3<Scalar> position = Vec3<Scalar>::Zero(), velocity = Vec3<Scalar>::Zero(),
+                 acceleration = Vec3<Scalar>::Zero();
+    Mat3<Scalar> rotation = Mat3<Scalar>::Identity();
+    Vec3<Scalar> omega = Vec3<Scalar>::Zero(), alpha = Vec3<Scalar>::Zero();
+  } ground;
   std::vector<Mat3<Scalar>> rotation;        ///< A per body
   std::vector<MarkerState<Scalar>> markers;  ///< by Model::Marker::slot
-  VectorX mass;      ///< per body its nv x nv mass block, column-major (Body::mass_offset)
-  VectorX force;     ///< Q_e - Q_v - K p - D p_dot and force elements
-  VectorX jacobian;  ///< per joint and body its rows x nv block, row-major (Joint::jac_i, jac_j)
+  VectorX mass;       ///< per body its nv x nv mass block, column-major (Body::mass_offset)
+  VectorX force;      ///< Q_e - Q_v - (K + K_G) p - D p_dot, force elements, point loads
+  VectorX geometric;  ///< per body with geometric stiffening its K_G (Body::geometric_offset)
+  VectorX jacobian;   ///< per joint and body its rows x nv block, row-major (Joint::jac_i, jac_j)
   VectorX phi, phi_t, conv;
   VectorX row_scratch;  ///< one body's row (force elements)
 
@@ -71,8 +81,15 @@ struct Data {
     std::vector<Mat3<Scalar>> factorized_rotations;
     VectorX correction_scale;
     VectorX r, dx, v_n, vd_n, a_n, a1, tmp, vd_prev, v_save, vd_save, q_n, q_save;
-    VectorX e, lambda_star, lambda_prev, lambda_save;
+    /// lambda_last: the augmented Lagrangian's lambda* at the end of the last step (the next
+    /// step starts from it; d.lambda is the multipliers, lambda* + alpha Phi).
+    VectorX e, lambda_star, lambda_last, lambda_prev, lambda_save;
   } integrator;
+
+  /// The explicit integrator's stages (explicit_step): stage velocities and accelerations.
+  struct RungeKutta {
+    std::array<VectorX, 4> v, k;
+  } rk4;
 
   /// The reason of the last failure (initialization, a step's restart), for a caller that
   /// only sees a status; fixed storage, written without allocating.
@@ -99,18 +116,21 @@ struct Data {
     laws = model.laws();
     inputs.assign(model.inputs().size(), MotionValue<Scalar>());
     input_set.assign(model.inputs().size(), 0);
+    anchors.assign(static_cast<std::size_t>(model.num_marker_slots()), MarkerAnchor<Scalar>());
     revision = 0;
     force_states.clear();
     for (const auto& f : model.forces()) force_states.push_back(f.initial_state);
     outputs.setZero(model.num_outputs());
     meters.clear();
     for (const auto& m : model.meters()) meters.push_back(m.prototype);
+    ground = Ground();
     rotation.assign(model.bodies().size(), Mat3<Scalar>::Identity());
     markers.assign(static_cast<std::size_t>(model.num_marker_slots()), MarkerState<Scalar>());
     for (std::size_t g = 0; g < model.ground_markers().size(); ++g)
       markers[static_cast<std::size_t>(model.ground_marker_slots()[g])] = model.ground_markers()[g];
     mass.setZero(model.mass_size());
     force.setZero(nv);
+    geometric.setZero(model.geometric_size());
     jacobian.setZero(model.jacobian_size());
     phi.setZero(nc);
     phi_t.setZero(nc);
@@ -134,7 +154,12 @@ struct Data {
       x->setZero(nv);
     in.q_n.setZero(model.num_coordinates());
     in.q_save.setZero(model.num_coordinates());
-    for (VectorX* x : {&in.e, &in.lambda_star, &in.lambda_prev, &in.lambda_save}) x->setZero(nc);
+    for (VectorX* x : {&in.e, &in.lambda_star, &in.lambda_last, &in.lambda_prev, &in.lambda_save})
+      x->setZero(nc);
+    for (int k = 0; k < 4; ++k) {
+      rk4.v[static_cast<std::size_t>(k)].setZero(nv);
+      rk4.k[static_cast<std::size_t>(k)].setZero(nv);
+    }
     message.fill('\0');
   }
 };

@@ -1,12 +1,13 @@
 // Energy balance of a running model: the mechanical energy E (kinetic, gravity, elastic,
-// springs) against the work W of the prescribed motions and of force elements with internal
-// states (a hydraulic cylinder's oil force) and the energy D the modal damping took out,
+// springs) against the work W of the prescribed motions, of force elements with internal states
+// (a hydraulic cylinder's oil force) and of point loads, and the energy D that modal damping and
+// the spring-dampers' dampers took out,
 //   r(t) = E(t) - E(0) - W(t) + D(t),
 // zero for the exact motion (the work-energy theorem with ideal joints; Shabana, Dynamics of
 // Multibody Systems, sec. 3.8). With M v_dot = Q - B^T lambda and B v + Phi_t = 0, drivers do
-// W' = lambda^T Phi_t and modal damping dissipates D' = p_dot^T D p_dot; both are integrated by
-// the trapezoidal rule over each recorded step, so r measures the integrator's energy error plus
-// that quadrature's O(h^2). Not counted: spring-dampers' dampers. Allocation-free after start.
+// W' = lambda^T Phi_t, modal damping dissipates D' = p_dot^T D p_dot and a damper c L_dot^2;
+// all are integrated by the trapezoidal rule over each recorded step, so r measures the
+// integrator's energy error plus that quadrature's O(h^2). Allocation-free after start.
 #pragma once
 
 #include <algorithm>
@@ -58,15 +59,37 @@ class EnergyBalance {
     update_markers(model, d);
     update_constraints(model, d);
     driver = d.lambda.dot(d.phi_t);
-    // Force elements with internal states, at their committed state: f . (v_j - v_i).
+    Scalar spring_damping = Scalar(0);
+    // Force elements with internal states, at their committed state: f . (v_j - v_i); point
+    // loads: f . r' + 1/2 sum_k (m x e_k) . e_k' (their generalized force times v).
     for (std::size_t k = 0; k < model.forces().size(); ++k) {
-      if (model.forces()[k].kind != ForceKind::hydraulic_cylinder) continue;
       const int id = static_cast<int>(k);
+      if (model.forces()[k].kind == ForceKind::point_load) {
+        Vec3<Scalar> f, m;
+        point_load(model, d, id, f, m);
+        const auto& state = force_marker(model, d, id, false);
+        driver += f.dot(state.origin.velocity);
+        for (int a = 0; a < 3; ++a)
+          driver += Scalar(0.5) * m.cross(state.axis(a).value).dot(state.axis(a).velocity);
+        continue;
+      }
+      if (model.forces()[k].kind == ForceKind::spring_damper) {
+        const auto& mi = force_marker(model, d, id, false);
+        const auto& mj = force_marker(model, d, id, true);
+        const Vec3<Scalar> dist = mj.origin.value - mi.origin.value;
+        const Scalar length = dist.norm();
+        if (length > Scalar(0)) {
+          const Scalar rate =
+              dist.dot(Vec3<Scalar>(mj.origin.velocity - mi.origin.velocity)) / length;
+          spring_damping += model.forces()[k].params.damping * rate * rate;
+        }
+        continue;
+      }
       const Vec3<Scalar> f = force_element_force(model, d, id);
       driver += f.dot(Vec3<Scalar>(force_marker(model, d, id, true).origin.velocity -
                                    force_marker(model, d, id, false).origin.velocity));
     }
-    damping = Scalar(0);
+    damping = spring_damping;
     const auto& bodies = model.bodies();
     for (std::size_t b = 0; b < bodies.size(); ++b) {
       if (!bodies[b].effects.modal_damping) continue;

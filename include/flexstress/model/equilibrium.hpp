@@ -68,7 +68,7 @@ Status solve_static_equilibrium(const Model<Scalar>& model, Data<Scalar>& d,
       in.iteration.setZero();
       set_mass_blocks(model, d, in.iteration);
       in.iteration *= c;
-      add_modal_stiffness_damping(model, in.iteration, Scalar(1), Scalar(0));
+      add_modal_stiffness_damping(model, d, in.iteration, Scalar(1), Scalar(0));
       // alpha B^T B gets penalty_factor times the largest diagonal of K + c M over the largest
       // squared column norm of B (flexible joint rows carry node rotations of order 100 per
       // unit modal coordinate).

@@ -37,12 +37,28 @@ struct SpringDamperParams {
   Scalar preload = Scalar(0);
 };
 
-enum class ForceKind : std::uint8_t { spring_damper, hydraulic_cylinder };
+enum class ForceKind : std::uint8_t { spring_damper, hydraulic_cylinder, point_load };
+
+/// A load at a marker computed by the user each evaluation (a C-compatible callback with user
+/// data): from the time and the marker's global position and velocity (3 each) it writes the
+/// force (global, 3) and the moment (global, 3), both zeroed before the call. It runs inside
+/// the step: it must not allocate, throw or block, and it is called from the thread stepping
+/// the Data.
+using PointLoadFunction = void (*)(double t, const double* position, const double* velocity,
+                                   double* force, double* moment, void* user);
 
 /// The damage meter a model attaches to an output: streaming rainflow on 128 classes and
 /// Palmgren-Miner damage (fatigue/streaming_damage.hpp).
 template <class Scalar>
 using DamageMeter = fatigue::StreamingDamage<Scalar, 128>;
+
+/// A prescribed motion of the ground frame (a crane on a ship or a truck): its origin follows
+/// the laws x(t), y(t), z(t) (global) and it turns by angle(t) about a fixed unit axis. Joints to
+/// the ground then move with it (their equations become time-dependent).
+struct GroundMotion {
+  bool moving = false;
+  int x = -1, y = -1, z = -1, angle = -1;  ///< indices of the laws in Data::laws
+};
 
 template <class Scalar>
 class Model {
@@ -52,11 +68,12 @@ class Model {
   struct Body {
     std::string name;
     int modes = 0;
-    int nv = 6;           ///< velocities, 6 + modes
-    int v_offset = 0;     ///< first velocity in v
-    int q_offset = 0;     ///< first coordinate in q
-    int mass_offset = 0;  ///< first entry of its mass block in Data::mass
-    int first_slot = 0;   ///< its markers' first slot in Data::markers
+    int nv = 6;                 ///< velocities, 6 + modes
+    int v_offset = 0;           ///< first velocity in v
+    int q_offset = 0;           ///< first coordinate in q
+    int mass_offset = 0;        ///< first entry of its mass block in Data::mass
+    int first_slot = 0;         ///< its markers' first slot in Data::markers
+    int geometric_offset = -1;  ///< its K_G in Data::geometric (-1: no geometric stiffening)
     int num_markers = 0;
     BodyEffects effects;  ///< what its dynamics stage evaluates
     const BodyKernels<Scalar>* kernels = nullptr;
@@ -92,6 +109,8 @@ class Model {
     HydraulicParams<Scalar> hydraulic;     ///< hydraulic cylinders
     HydraulicState<Scalar> initial_state;  ///< their chamber pressures at the start
     int law = -1;                          ///< hydraulic cylinders: the valve command's law
+    PointLoadFunction load = nullptr;      ///< point loads (marker_j = -1)
+    void* user = nullptr;
   };
   /// Stress outputs of a flexible body: y = F p (+ G g for the sub-model's own inertia, g the
   /// body frame's 12 inertia coordinates), F fused from a sub-model's influence rows and the
@@ -136,6 +155,8 @@ class Model {
   int num_marker_slots() const { return static_cast<int>(slot_parts_.size()); }
   int jacobian_size() const { return jacobian_size_; }
   int mass_size() const { return mass_size_; }
+  /// Entries of the geometric stiffness matrices K_G (bodies with geometric stiffening).
+  int geometric_size() const { return geometric_size_; }
   /// Marker parts (MarkerParts bits) evaluated per slot: what the joints and forces read.
   const std::vector<unsigned>& slot_parts() const { return slot_parts_; }
   /// Ground markers, evaluated once (the ground does not move).
@@ -143,6 +164,9 @@ class Model {
   const std::vector<int>& ground_marker_slots() const { return ground_marker_slots_; }
 
   const Vec3<Scalar>& gravity() const { return gravity_; }
+  const GroundMotion& ground_motion() const { return ground_motion_; }
+  /// The ground's rotation axis (unit, global) when it moves.
+  const Vec3<Scalar>& ground_axis() const { return ground_axis_; }
   bool has_gravity() const { return has_gravity_; }
   bool has_quadratic_velocity() const { return quadratic_velocity_; }
   /// The laws drivers start with (a Data copies them and may swap them).
@@ -186,10 +210,12 @@ class Model {
   std::vector<MotionLaw<Scalar>> laws_;
   Vec3<Scalar> gravity_ = Vec3<Scalar>::Zero();
   bool has_gravity_ = false;
+  GroundMotion ground_motion_;
+  Vec3<Scalar> ground_axis_ = Vec3<Scalar>::UnitZ();
   bool quadratic_velocity_ = true;
   ImplicitSettings<Scalar> settings_;
   BlockPattern pattern_;
-  int nv_ = 0, nq_ = 0, nc_ = 0, jacobian_size_ = 0, mass_size_ = 0;
+  int nv_ = 0, nq_ = 0, nc_ = 0, jacobian_size_ = 0, mass_size_ = 0, geometric_size_ = 0;
 };
 
 }  // namespace flexstress

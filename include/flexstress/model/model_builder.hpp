@@ -98,8 +98,9 @@ class ModelBuilder {
     bool done = false;
     Error error;
     error.message.clear();
-    adopt_compiled(data, modes, done, p, error,
-                   std::integer_sequence<int, FLEXSTRESS_MODE_COUNTS>{});
+    if (!bounded_kernels_)
+      adopt_compiled(data, modes, done, p, error,
+                     std::integer_sequence<int, FLEXSTRESS_MODE_COUNTS>{});
     if (!done) {
       auto b = BodyModel<Scalar, Eigen::Dynamic>::from_modal_data(data, modes);
       if (b)
@@ -111,6 +112,24 @@ class ModelBuilder {
     if (!error.message.empty()) fail(error.code, "body '", name, "': ", error.message);
     return push(std::move(p));
   }
+
+  /// Geometric stiffening of a flexible body under its own inertial and gravity loads: K_G
+  /// from modal geometric stiffness per unit load case (reduction/modal_geometric_stiffness.hpp;
+  /// at least the body's modes). What a fast-spinning or strongly accelerated body needs (the
+  /// spin-up beam's stiffening); it costs one K_G per body and evaluation.
+  void add_geometric_stiffening(BodyId b, const reduction::ModalGeometricStiffness& g) {
+    Pending& p = body_entry(b, "add_geometric_stiffening");
+    if (&p == &scratch_ || !p.holder) return;
+    if (Status s = p.set_geometric(p.holder.get(), g); !s.ok())
+      fail(s.error().code, "body '", p.body.name, "': ", s.error().message);
+    else
+      p.body.effects.geometric_stiffening = true;
+  }
+
+  /// Flexible bodies added from now on run the bounded-size kernels even when their mode count
+  /// has fixed-size ones: the same arithmetic in other storage, for checking one against the
+  /// other (no faster, no smaller).
+  void use_bounded_kernels(bool on = true) { bounded_kernels_ = on; }
 
   /// Sets the modal damping ratio of every mode of a flexible body.
   void set_damping_ratio(BodyId b, Scalar zeta) { body_entry(b, "set_damping_ratio").zeta = zeta; }
@@ -244,6 +263,22 @@ class ModelBuilder {
     return ForceId{static_cast<int>(forces_.size()) - 1};
   }
 
+  /// A force and moment at a marker on a body, computed each evaluation by `load` (see
+  /// PointLoadFunction) with `user` passed through: wind, a tool's reaction, contact computed
+  /// outside. Its work counts in EnergyBalance.
+  ForceId add_point_load(const std::string& name, MarkerId marker, PointLoadFunction load,
+                         void* user = nullptr) {
+    typename ModelType::Force f;
+    f.name = name;
+    f.kind = ForceKind::point_load;
+    f.marker_i = marker.index;
+    f.load = load;
+    f.user = user;
+    if (load == nullptr) fail(ErrorCode::invalid_argument, "force '", name, "': no load function");
+    forces_.push_back(std::move(f));
+    return ForceId{static_cast<int>(forces_.size()) - 1};
+  }
+
   /// Stress outputs of a flexible body: y = F p with F (outputs x the body's modes, e.g.
   /// stress::FusedStress rows), one name per row. Returns the first output; the others follow.
   OutputId add_stress_outputs(const std::string& name, BodyId body,
@@ -295,6 +330,26 @@ class ModelBuilder {
     return InputId{static_cast<int>(inputs_.size()) - 1};
   }
 
+  /// Moves the ground frame (see GroundMotion): its origin along x(t), y(t), z(t) and its turn
+  /// by angle(t) about `axis` (global). Joints to the ground then move with it.
+  void set_ground_motion(MotionLaw<Scalar> x, MotionLaw<Scalar> y, MotionLaw<Scalar> z,
+                         MotionLaw<Scalar> angle,
+                         const Vec3<Scalar>& axis = Vec3<Scalar>::UnitZ()) {
+    if (!axis.allFinite() || !(axis.norm() > Scalar(0))) {
+      fail(ErrorCode::invalid_argument, "ground motion: the axis must be finite and non-zero");
+      return;
+    }
+    ground_axis_ = axis.normalized();
+    ground_motion_.moving = true;
+    int* index[4] = {&ground_motion_.x, &ground_motion_.y, &ground_motion_.z,
+                     &ground_motion_.angle};
+    MotionLaw<Scalar>* laws[4] = {&x, &y, &z, &angle};
+    for (int k = 0; k < 4; ++k) {
+      *index[k] = static_cast<int>(laws_.size());
+      laws_.push_back(std::move(*laws[k]));
+    }
+  }
+
   /// Uniform gravity (global frame); without a call there is none.
   void set_gravity(const Vec3<Scalar>& g) {
     if (!g.allFinite()) fail(ErrorCode::invalid_argument, "gravity is not finite");
@@ -324,9 +379,16 @@ class ModelBuilder {
     m.has_gravity_ = has_gravity_;
     m.quadratic_velocity_ = quadratic_velocity_;
     m.inputs_ = inputs_;
+    m.ground_motion_ = ground_motion_;
+    m.ground_axis_ = ground_axis_;
+    if (ground_motion_.moving)
+      for (int k : {ground_motion_.x, ground_motion_.y, ground_motion_.z, ground_motion_.angle})
+        if (const char* bad =
+                laws_[static_cast<std::size_t>(k)].check(static_cast<int>(inputs_.size())))
+          return make_error(ErrorCode::invalid_argument, "ground motion: ", bad);
     // Bodies: offsets, effects, copies of the holders (a Model owns its bodies; builders may
     // go on adding to theirs).
-    int nv = 0, nq = 0, mass = 0;
+    int nv = 0, nq = 0, mass = 0, geometric = 0;
     for (const Pending& p : bodies_) {
       typename ModelType::Body b = p.body;
       b.holder = p.clone(p.holder.get(), p.zeta, b.displacement_scale, b.max_frequency, b.modes);
@@ -340,8 +402,15 @@ class ModelBuilder {
       b.effects.gravity = has_gravity_;
       b.effects.quadratic_velocity = quadratic_velocity_;
       b.effects.modal_damping = b.modes > 0 && p.zeta_any(p.holder.get(), p.zeta);
+      if (b.effects.geometric_stiffening && b.modes > 0) {
+        b.geometric_offset = geometric;
+        geometric += b.modes * b.modes;
+      } else {
+        b.effects.geometric_stiffening = false;
+      }
       m.bodies_.push_back(std::move(b));
     }
+    m.geometric_size_ = geometric;
     m.nv_ = nv;
     m.nq_ = nq;
     m.mass_size_ = mass;
@@ -407,6 +476,20 @@ class ModelBuilder {
     m.jacobian_size_ = jac;
     for (const auto& src : forces_) {
       typename ModelType::Force f = src;
+      if (f.kind == ForceKind::point_load) {
+        if (!marker_ok(f.marker_i))
+          return make_error(ErrorCode::invalid_argument, "force '", f.name,
+                            "': the marker handle is not of this model");
+        f.body_i = markers_[static_cast<std::size_t>(f.marker_i)].body;
+        if (f.body_i < 0)
+          return make_error(ErrorCode::invalid_argument, "force '", f.name,
+                            "': a point load on the ground does nothing");
+        m.slot_parts_[static_cast<std::size_t>(
+            m.markers_[static_cast<std::size_t>(f.marker_i)].slot)] |=
+            MarkerParts::all | marker_needs_rates;
+        m.forces_.push_back(std::move(f));
+        continue;
+      }
       if (!marker_ok(f.marker_i) || !marker_ok(f.marker_j))
         return make_error(ErrorCode::invalid_argument, "force '", f.name,
                           "': a marker handle is not of this model");
@@ -443,6 +526,7 @@ class ModelBuilder {
     typename ModelType::Body body;
     std::shared_ptr<void> holder;
     int (*add_marker)(void*, Index, const Vec3<Scalar>&, const Mat3<Scalar>&) = nullptr;
+    Status (*set_geometric)(void*, const reduction::ModalGeometricStiffness&) = nullptr;
     /// Copies the holder with damping ratio zeta (if set) and reads its mode data.
     std::shared_ptr<const void> (*clone)(const void*, const std::optional<Scalar>&,
                                          std::vector<Scalar>&, Scalar&, int&) = nullptr;
@@ -485,6 +569,7 @@ class ModelBuilder {
   template <int N>
   static void set_functions(Pending& p) {
     p.add_marker = &detail::BodyKernelImpl<Scalar, N>::add_marker;
+    p.set_geometric = &detail::BodyKernelImpl<Scalar, N>::set_geometric_stiffness;
     p.clone = &clone_holder<N>;
     p.zeta_any = &any_damping<N>;
   }
@@ -529,6 +614,9 @@ class ModelBuilder {
   Vec3<Scalar> gravity_ = Vec3<Scalar>::Zero();
   bool has_gravity_ = false;
   bool quadratic_velocity_ = true;
+  bool bounded_kernels_ = false;
+  GroundMotion ground_motion_;
+  Vec3<Scalar> ground_axis_ = Vec3<Scalar>::UnitZ();
   ImplicitSettings<Scalar> settings_;
   Error first_error_{ErrorCode::invalid_argument, std::string()};
 };

@@ -38,11 +38,51 @@ void update_kinematics(const Model<Scalar>& model, Data<Scalar>& d) {
     d.rotation[b] = rotation_matrix<Scalar>(d.q.template segment<4>(bodies[b].q_offset + 3));
 }
 
+/// The ground frame at d.t and its markers (a model whose ground moves). A ground marker's
+/// "convective" part is its whole acceleration: the ground has no unknown velocities.
+template <class Scalar>
+void update_ground(const Model<Scalar>& model, Data<Scalar>& d) {
+  const GroundMotion& gm = model.ground_motion();
+  if (!gm.moving) return;
+  const auto law = [&](int k) { return d.laws[static_cast<std::size_t>(k)](d.t, d.inputs.data()); };
+  const MotionValue<Scalar> x = law(gm.x), y = law(gm.y), z = law(gm.z), angle = law(gm.angle);
+  auto& g = d.ground;
+  const Vec3<Scalar>& axis = model.ground_axis();
+  g.position = Vec3<Scalar>(x.value, y.value, z.value);
+  g.velocity = Vec3<Scalar>(x.rate, y.rate, z.rate);
+  g.acceleration = Vec3<Scalar>(x.acceleration, y.acceleration, z.acceleration);
+  g.rotation = rotation_matrix<Scalar>(from_axis_angle<Scalar>(axis, angle.value));
+  g.omega = axis * angle.rate;
+  g.alpha = axis * angle.acceleration;
+  const auto& slots = model.ground_marker_slots();
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    const MarkerState<Scalar>& rest = model.ground_markers()[k];  // values: the local frame
+    MarkerState<Scalar>& m = d.markers[static_cast<std::size_t>(slots[k])];
+    m.rotation = g.rotation;
+    const auto move = [&](const VectorEval<Scalar>& local, VectorEval<Scalar>& e, bool point) {
+      const Vec3<Scalar> turned = g.rotation * local.local;
+      e.local = local.local;
+      e.value = point ? Vec3<Scalar>(g.position + turned) : turned;
+      e.velocity = g.omega.cross(turned);
+      e.convective = g.alpha.cross(turned) + g.omega.cross(Vec3<Scalar>(g.omega.cross(turned)));
+      if (point) {
+        e.velocity += g.velocity;
+        e.convective += g.acceleration;
+      }
+    };
+    move(rest.origin, m.origin, true);
+    move(rest.x, m.x, false);
+    move(rest.y, m.y, false);
+    move(rest.z, m.z, false);
+  }
+}
+
 /// Stage 2: the markers joints and forces read (call update_kinematics first). Without rates
 /// only positions and axes are evaluated (a Newton iterate needs Phi and B), except on markers
 /// of force elements, whose damping reads velocities.
 template <class Scalar>
 void update_markers(const Model<Scalar>& model, Data<Scalar>& d, bool rates = true) {
+  update_ground(model, d);
   const auto& bodies = model.bodies();
   const unsigned* parts = model.slot_parts().data();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -50,7 +90,7 @@ void update_markers(const Model<Scalar>& model, Data<Scalar>& d, bool rates = tr
     if (body.num_markers == 0) continue;
     body.kernels->markers(body.holder.get(), d.q.data() + body.q_offset, d.v.data() + body.v_offset,
                           d.rotation[b], rates, parts + body.first_slot,
-                          d.markers.data() + body.first_slot);
+                          d.anchors.data() + body.first_slot, d.markers.data() + body.first_slot);
   }
 }
 
@@ -86,6 +126,14 @@ void update_constraints(const Model<Scalar>& model, Data<Scalar>& d) {
       d.phi_t(j.row + r) = rows.phi_t[static_cast<std::size_t>(r)];
       d.conv(j.row + r) = rows.conv[static_cast<std::size_t>(r)];
     }
+    if (model.ground_motion().moving && (j.body_i < 0 || j.body_j < 0)) {
+      // A moving ground's side: its rows times the ground's twist [R_dot; w (ground frame)].
+      Eigen::Matrix<Scalar, 6, 1> twist;
+      twist << d.ground.velocity, d.ground.rotation.transpose() * d.ground.omega;
+      const auto& ground_side = j.body_i < 0 ? rows.i : rows.j;
+      for (int r = 0; r < n; ++r)
+        d.phi_t(j.row + r) += ground_side[static_cast<std::size_t>(r)].rigid.dot(twist);
+    }
     if (j.body_i >= 0) {
       const auto& b = bodies[static_cast<std::size_t>(j.body_i)];
       b.kernels->jacobian_rows(b.holder.get(), mi.local, joint_parts_i(j.kind), rows.i.data(), n,
@@ -99,18 +147,46 @@ void update_constraints(const Model<Scalar>& model, Data<Scalar>& d) {
   }
 }
 
-/// Adds s * J_origin^T f of marker `m` (on a body) to the generalized force.
+/// Adds the generalized force of a force f at the origin of `marker` (on a body) and a moment
+/// m on its frame (both global): Q += J_origin^T f + 1/2 sum_k J_k^T (m x e_k). The moment's
+/// form follows from w = 1/2 sum_k e_k x e_k' for the marker's axes e_k, so its virtual power
+/// m . w is exact for a rigid frame and follows a flexible node's rotation.
 template <class Scalar>
-void add_marker_force(const Model<Scalar>& model, Data<Scalar>& d, int marker,
-                      const Vec3<Scalar>& f, Scalar s) {
+void add_marker_load(const Model<Scalar>& model, Data<Scalar>& d, int marker, const Vec3<Scalar>& f,
+                     const Vec3<Scalar>* moment = nullptr) {
   const auto& mk = model.markers()[static_cast<std::size_t>(marker)];
   if (mk.body < 0) return;
   const auto& b = model.bodies()[static_cast<std::size_t>(mk.body)];
+  const MarkerState<Scalar>& state = d.markers[static_cast<std::size_t>(mk.slot)];
   RowSide<Scalar> side;
-  side.add_origin(d.markers[static_cast<std::size_t>(mk.slot)], f, s);
-  b.kernels->jacobian_rows(b.holder.get(), mk.local, MarkerParts::origin, &side, 1,
-                           d.row_scratch.data());
+  side.add_origin(state, f);
+  unsigned parts = MarkerParts::origin;
+  if (moment != nullptr) {
+    for (int a = 0; a < 3; ++a)
+      side.add_axis(state, a, Vec3<Scalar>(moment->cross(state.axis(a).value)), Scalar(0.5));
+    parts = MarkerParts::all;
+  }
+  b.kernels->jacobian_rows(b.holder.get(), mk.local, parts, &side, 1, d.row_scratch.data());
   d.force.segment(b.v_offset, b.nv) += d.row_scratch.head(b.nv);
+}
+
+/// A point load's force and moment at d.t from its callback (markers up to date).
+template <class Scalar>
+void point_load(const Model<Scalar>& model, const Data<Scalar>& d, int k, Vec3<Scalar>& force,
+                Vec3<Scalar>& moment) {
+  const auto& f = model.forces()[static_cast<std::size_t>(k)];
+  const auto& m = d.markers[static_cast<std::size_t>(
+      model.markers()[static_cast<std::size_t>(f.marker_i)].slot)];
+  double position[3], velocity[3], out_force[3] = {0, 0, 0}, out_moment[3] = {0, 0, 0};
+  for (int c = 0; c < 3; ++c) {
+    position[c] = double(m.origin.value(c));
+    velocity[c] = double(m.origin.velocity(c));
+  }
+  f.load(double(d.t), position, velocity, out_force, out_moment, f.user);
+  for (int c = 0; c < 3; ++c) {
+    force(c) = Scalar(out_force[c]);
+    moment(c) = Scalar(out_moment[c]);
+  }
 }
 
 /// The evaluated markers of force element k.
@@ -174,15 +250,23 @@ void update_dynamics(const Model<Scalar>& model, Data<Scalar>& d) {
   const auto& bodies = model.bodies();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const auto& body = bodies[b];
-    body.kernels->dynamics(body.holder.get(), d.q.data() + body.q_offset,
-                           d.v.data() + body.v_offset, d.rotation[b], body.effects, model.gravity(),
-                           d.mass.data() + body.mass_offset, d.force.data() + body.v_offset);
+    body.kernels->dynamics(
+        body.holder.get(), d.q.data() + body.q_offset, d.v.data() + body.v_offset,
+        d.v_dot.data() + body.v_offset, d.rotation[b], body.effects, model.gravity(),
+        d.mass.data() + body.mass_offset, d.force.data() + body.v_offset,
+        body.geometric_offset >= 0 ? d.geometric.data() + body.geometric_offset : nullptr);
   }
   for (std::size_t k = 0; k < model.forces().size(); ++k) {
-    const Vec3<Scalar> on_j = force_element_force(model, d, static_cast<int>(k));
     const auto& f = model.forces()[k];
-    add_marker_force(model, d, f.marker_j, on_j, Scalar(1));
-    add_marker_force(model, d, f.marker_i, on_j, Scalar(-1));
+    if (f.kind == ForceKind::point_load) {
+      Vec3<Scalar> force, moment;
+      point_load(model, d, static_cast<int>(k), force, moment);
+      add_marker_load(model, d, f.marker_i, force, &moment);
+      continue;
+    }
+    const Vec3<Scalar> on_j = force_element_force(model, d, static_cast<int>(k));
+    add_marker_load(model, d, f.marker_j, on_j);
+    add_marker_load(model, d, f.marker_i, Vec3<Scalar>(-on_j));
   }
 }
 
@@ -265,15 +349,17 @@ void add_constraint_gram(const Model<Scalar>& model, const Data<Scalar>& d, Scal
   }
 }
 
-/// s += k_factor K + c_factor D on the modal blocks (D where the body is damped).
+/// s += k_factor (K + K_G) + c_factor D on the modal blocks (D where the body is damped, K_G
+/// of the last update_dynamics where it is geometrically stiffened).
 template <class Scalar, class S>
-void add_modal_stiffness_damping(const Model<Scalar>& model, S& s, Scalar k_factor,
-                                 Scalar c_factor) {
+void add_modal_stiffness_damping(const Model<Scalar>& model, const Data<Scalar>& d, S& s,
+                                 Scalar k_factor, Scalar c_factor) {
   for (const auto& b : model.bodies()) {
     if (b.modes == 0) continue;
-    b.kernels->add_stiffness_damping(b.holder.get(), k_factor, c_factor, b.effects.modal_damping,
-                                     &s(b.v_offset + 6, b.v_offset + 6),
-                                     static_cast<int>(s.outerStride()));
+    b.kernels->add_stiffness_damping(
+        b.holder.get(), k_factor, c_factor, b.effects.modal_damping,
+        b.geometric_offset >= 0 ? d.geometric.data() + b.geometric_offset : nullptr,
+        &s(b.v_offset + 6, b.v_offset + 6), static_cast<int>(s.outerStride()));
   }
 }
 

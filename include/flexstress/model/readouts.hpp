@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <type_traits>
 
 #include <Eigen/Core>
 
@@ -45,38 +46,54 @@ template <class Scalar>
 Vec3<Scalar> body_angular_velocity(const Model<Scalar>& m, const Data<Scalar>& d, BodyId b) {
   return d.v.template segment<3>(m.body(b).v_offset + 3);
 }
-/// Modal coordinates of a flexible body (empty for a rigid one).
+/// A read-only view into a Data's vector (no copy, no allocation; valid while the Data is).
 template <class Scalar>
-Eigen::Matrix<Scalar, Eigen::Dynamic, 1> modal_coordinates(const Model<Scalar>& m,
-                                                           const Data<Scalar>& d, BodyId b) {
+using DataSegment = Eigen::VectorBlock<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>;
+
+/// Modal coordinates of a flexible body (empty for a rigid one), as a view.
+template <class Scalar>
+DataSegment<Scalar> modal_coordinates(const Model<Scalar>& m, const Data<Scalar>& d, BodyId b) {
   return d.q.segment(m.body(b).q_offset + 7, m.body(b).modes);
 }
+
+/// A marker evaluated in full (origin and axes with their rates) at d's coordinates, whatever
+/// parts the step evaluates; allocation-free.
+template <class Scalar>
+MarkerState<Scalar> marker_state(const Model<Scalar>& m, const Data<Scalar>& d, MarkerId id) {
+  const auto& mk = m.marker(id);
+  if (mk.body < 0) return d.markers[static_cast<std::size_t>(mk.slot)];
+  const auto& b = m.bodies()[static_cast<std::size_t>(mk.body)];
+  const Mat3<Scalar> a = rotation_matrix<Scalar>(d.q.template segment<4>(b.q_offset + 3));
+  MarkerState<Scalar> state;
+  b.kernels->marker(b.holder.get(), mk.local, d.q.data() + b.q_offset, d.v.data() + b.v_offset, a,
+                    d.anchors[static_cast<std::size_t>(mk.slot)], state);
+  return state;
+}
+
+namespace detail {
+/// The frame of evaluated vectors: their global values, or their body-frame ones (`local`).
+template <class Scalar>
+Frame<Scalar> frame_of(const MarkerState<Scalar>& state, bool local) {
+  const auto pick = [&](const VectorEval<Scalar>& e) { return local ? e.local : e.value; };
+  Frame<Scalar> f;
+  f.origin = pick(state.origin);
+  f.axes << pick(state.x), pick(state.y), pick(state.z);
+  return f;
+}
+}  // namespace detail
 
 /// A marker's frame at the current state (global; on a flexible body it follows its node).
 template <class Scalar>
 Frame<Scalar> marker_frame(const Model<Scalar>& m, const Data<Scalar>& d, MarkerId id) {
-  const auto& mk = m.marker(id);
-  MarkerState<Scalar> state;
-  if (mk.body < 0) {
-    state = d.markers[static_cast<std::size_t>(mk.slot)];
-  } else {
-    const auto& b = m.bodies()[static_cast<std::size_t>(mk.body)];
-    // Evaluate all of the body's markers in full, into a local copy of the parts: read-outs
-    // are outside the step and may use the stack freely.
-    std::vector<unsigned> parts(static_cast<std::size_t>(b.num_markers), 0u);
-    std::vector<MarkerState<Scalar>> out(static_cast<std::size_t>(b.num_markers));
-    parts[static_cast<std::size_t>(mk.local)] = MarkerParts::all;
-    const Mat3<Scalar> a = rotation_matrix<Scalar>(d.q.template segment<4>(b.q_offset + 3));
-    b.kernels->markers(b.holder.get(), d.q.data() + b.q_offset, d.v.data() + b.v_offset, a, true,
-                       parts.data(), out.data());
-    state = out[static_cast<std::size_t>(mk.local)];
-  }
-  Frame<Scalar> f;
-  f.origin = state.origin.value;
-  f.axes.col(0) = state.x.value;
-  f.axes.col(1) = state.y.value;
-  f.axes.col(2) = state.z.value;
-  return f;
+  return detail::frame_of(marker_state(m, d, id), false);
+}
+
+/// A marker's frame in its body's frame, deformation included: origin u = c + Psi p and axes
+/// c_k + Psi_k p (linear in the modal coordinates; the elastic part is u minus its value at
+/// p = 0). On the ground, the ground frame's.
+template <class Scalar>
+Frame<Scalar> marker_frame_in_body(const Model<Scalar>& m, const Data<Scalar>& d, MarkerId id) {
+  return detail::frame_of(marker_state(m, d, id), true);
 }
 
 /// Force and moment a joint applies to the body of its marker j, at marker j's origin, in the
@@ -132,6 +149,26 @@ struct Energy {
   Scalar kinetic = Scalar(0), gravity = Scalar(0), elastic = Scalar(0), springs = Scalar(0);
   Scalar total() const { return kinetic + gravity + elastic + springs; }
 };
+
+/// The mechanical energy of one body (kinetic, gravity, elastic; no springs), allocation-free.
+template <class Scalar>
+Energy<Scalar> body_energy(const Model<Scalar>& m, const Data<Scalar>& d, BodyId id) {
+  const auto& b = m.body(id);
+  const Mat3<Scalar> a = rotation_matrix<Scalar>(d.q.template segment<4>(b.q_offset + 3));
+  Energy<Scalar> e;
+  Scalar potential = Scalar(0), damping = Scalar(0);
+  b.kernels->energies(b.holder.get(), d.q.data() + b.q_offset, d.v.data() + b.v_offset, a,
+                      m.gravity(), &e.kinetic, &e.elastic, &potential, &damping);
+  if (m.has_gravity()) e.gravity = potential;
+  return e;
+}
+
+/// A force element's internal state (a hydraulic cylinder's chamber pressures, piston position
+/// and valve flows) after the last accepted step.
+template <class Scalar>
+const HydraulicState<Scalar>& force_state(const Model<Scalar>&, const Data<Scalar>& d, ForceId id) {
+  return d.force_states[static_cast<std::size_t>(id.index)];
+}
 template <class Scalar>
 Energy<Scalar> energy(const Model<Scalar>& m, Data<Scalar>& d) {
   Energy<Scalar> e;
@@ -148,6 +185,7 @@ Energy<Scalar> energy(const Model<Scalar>& m, Data<Scalar>& d) {
     if (m.has_gravity()) e.gravity += potential;
   }
   for (const auto& f : m.forces()) {
+    if (f.kind != ForceKind::spring_damper) continue;
     const auto& mi =
         d.markers[static_cast<std::size_t>(m.markers()[static_cast<std::size_t>(f.marker_i)].slot)];
     const auto& mj =
@@ -156,6 +194,72 @@ Energy<Scalar> energy(const Model<Scalar>& m, Data<Scalar>& d) {
     e.springs +=
         Scalar(0.5) * f.params.stiffness * (l - f.params.rest_length) * (l - f.params.rest_length) +
         f.params.preload * l;
+  }
+  return e;
+}
+
+/// A flexible body's modal velocities p_dot (empty for a rigid body), as a view.
+template <class Scalar>
+DataSegment<Scalar> modal_velocities(const Model<Scalar>& m, const Data<Scalar>& d, BodyId id) {
+  const auto& b = m.body(id);
+  return d.v.segment(b.v_offset + 6, b.modes);
+}
+
+/// Linear momentum and angular momentum about the global origin (global).
+template <class Scalar>
+struct Momentum {
+  Vec3<Scalar> linear = Vec3<Scalar>::Zero();
+  Vec3<Scalar> angular = Vec3<Scalar>::Zero();
+};
+/// The momentum of one body, or of all bodies (`body` left out).
+template <class Scalar>
+Momentum<Scalar> momentum(const Model<Scalar>& m, const Data<Scalar>& d, BodyId body = BodyId{-1}) {
+  Momentum<Scalar> total;
+  for (std::size_t k = 0; k < m.bodies().size(); ++k) {
+    if (body.index >= 0 && static_cast<int>(k) != body.index) continue;
+    const auto& b = m.bodies()[k];
+    const Mat3<Scalar> a = rotation_matrix<Scalar>(d.q.template segment<4>(b.q_offset + 3));
+    Vec3<Scalar> linear, angular;
+    b.kernels->momentum(b.holder.get(), d.q.data() + b.q_offset, d.v.data() + b.v_offset, a,
+                        &linear, &angular);
+    total.linear += linear;
+    total.angular += angular;
+  }
+  return total;
+}
+
+/// What a driver exerts along its coordinate: the force (prismatic, N) pushing marker j along
+/// +z_i, or the moment (revolute, N m) turning it about z_i, from the multiplier of its
+/// equation (M v_dot = Q - B^T lambda). Zero for a joint that is not a driver.
+template <class Scalar>
+Scalar driver_effort(const Model<Scalar>& m, const Data<Scalar>& d, JointId id) {
+  const auto& j = m.joint(id);
+  return is_driver(j.kind) ? -d.lambda(j.row) : Scalar(0);
+}
+
+/// A joint's equations at the last evaluation (evaluate() or a step): Phi, Phi_t, the
+/// convective term (the time derivative of B v + Phi_t without B v_dot) and its rows of B
+/// (equations x the model's velocities; zero outside its two bodies).
+template <class Scalar>
+struct JointEquations {
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> phi, phi_t, conv;
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> jacobian;
+};
+template <class Scalar>
+JointEquations<Scalar> joint_equations(const Model<Scalar>& m, const Data<Scalar>& d, JointId id) {
+  const auto& j = m.joint(id);
+  JointEquations<Scalar> e;
+  e.phi = d.phi.segment(j.row, j.equations);
+  e.phi_t = d.phi_t.segment(j.row, j.equations);
+  e.conv = d.conv.segment(j.row, j.equations);
+  e.jacobian.setZero(j.equations, m.num_velocities());
+  const int side_body[2] = {j.body_i, j.body_j};
+  const int side_block[2] = {j.jac_i, j.jac_j};
+  for (int side = 0; side < 2; ++side) {
+    if (side_body[side] < 0) continue;
+    const auto& b = m.bodies()[static_cast<std::size_t>(side_body[side])];
+    e.jacobian.middleCols(b.v_offset, b.nv) =
+        detail::ConstRowBlock<Scalar>(d.jacobian.data() + side_block[side], j.equations, b.nv);
   }
   return e;
 }
@@ -173,6 +277,82 @@ void set_joint_active(const Model<Scalar>& m, Data<Scalar>& d, JointId j, bool a
 template <class Scalar>
 bool joint_active(const Data<Scalar>& d, JointId j) {
   return d.joint_active[static_cast<std::size_t>(j.index)] != 0;
+}
+
+namespace detail {
+/// T in a parameter that takes no part in deducing Scalar (so Vector3d::Zero() binds).
+template <class T>
+using Given = typename std::enable_if<true, T>::type;
+}  // namespace detail
+
+/// Moves a body's frame to a pose (global), e.g. before initialize(), which assembles the
+/// joints from there. Returns an error for a pose that is not finite.
+template <class Scalar>
+Status set_body_pose(const Model<Scalar>& m, Data<Scalar>& d, BodyId id,
+                     const detail::Given<Vec3<Scalar>>& position,
+                     const detail::Given<EulerParameters<Scalar>>& orientation) {
+  const auto& b = m.body(id);
+  if (!position.allFinite() || !orientation.allFinite() || !(orientation.norm() > Scalar(0)))
+    return make_error(ErrorCode::invalid_argument, m.describe_body(id.index),
+                      ": pose not finite or orientation zero");
+  d.q.template segment<3>(b.q_offset) = position;
+  d.q.template segment<4>(b.q_offset + 3) = orientation.normalized();
+  return Status::success();
+}
+
+/// Sets a body's velocity: its frame's linear velocity (global) and angular velocity (body
+/// frame), e.g. before initialize(), which makes the velocities consistent with the joints.
+template <class Scalar>
+void set_body_velocity(const Model<Scalar>& m, Data<Scalar>& d, BodyId id,
+                       const detail::Given<Vec3<Scalar>>& linear,
+                       const detail::Given<Vec3<Scalar>>& angular_body) {
+  const auto& b = m.body(id);
+  d.v.template segment<3>(b.v_offset) = linear;
+  d.v.template segment<3>(b.v_offset + 3) = angular_body;
+}
+/// Sets a flexible body's modal coordinates and their rates (sizes: its modes).
+template <class Scalar>
+Status set_modal_state(
+    const Model<Scalar>& m, Data<Scalar>& d, BodyId id,
+    const detail::Given<Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>>& p,
+    const detail::Given<Eigen::Ref<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>>& p_dot) {
+  const auto& b = m.body(id);
+  if (p.size() != b.modes || p_dot.size() != b.modes)
+    return make_error(ErrorCode::size_mismatch, m.describe_body(id.index), " has ", b.modes,
+                      " modes; given ", p.size(), " coordinates and ", p_dot.size(), " rates");
+  if (!p.allFinite() || !p_dot.allFinite())
+    return make_error(ErrorCode::invalid_argument, m.describe_body(id.index),
+                      ": modal state not finite");
+  d.q.segment(b.q_offset + 7, b.modes) = p;
+  d.v.segment(b.v_offset + 6, b.modes) = p_dot;
+  return Status::success();
+}
+
+/// Moves marker j of a joint on its body so that it coincides with marker i at d's state
+/// (origin and axes): the joint then holds the two bodies where they are, so switching it on
+/// is a capture without a jump in positions. The moved marker is the Data's: it moves for
+/// every part that uses it (give the joint its own marker j if others share it). Exact on a
+/// rigid body j; on a flexible body j the moved point keeps its node's mode shapes. For joints
+/// whose equations coincident frames meet (not distance joints or drivers). Counts as a
+/// runtime change; nothing is allocated.
+template <class Scalar>
+Status anchor_joint_at(const Model<Scalar>& m, Data<Scalar>& d, JointId id) {
+  const auto& j = m.joint(id);
+  if (j.kind == JointKind::distance || is_driver(j.kind))
+    return make_error(ErrorCode::invalid_argument, m.describe_joint(id.index),
+                      ": coincident markers do not meet its equations; only joints that hold "
+                      "frames together can be anchored");
+  if (j.body_j < 0)
+    return make_error(ErrorCode::invalid_argument, m.describe_joint(id.index),
+                      ": its marker j is on the ground, which cannot move");
+  const auto& mj = m.markers()[static_cast<std::size_t>(j.marker_j)];
+  const auto& b = m.bodies()[static_cast<std::size_t>(j.body_j)];
+  const MarkerState<Scalar> target = marker_state(m, d, MarkerId{j.marker_i});
+  const Mat3<Scalar> a = rotation_matrix<Scalar>(d.q.template segment<4>(b.q_offset + 3));
+  b.kernels->anchor(b.holder.get(), mj.local, d.q.data() + b.q_offset, a, target,
+                    d.anchors[static_cast<std::size_t>(mj.slot)]);
+  ++d.revision;
+  return Status::success();
 }
 
 /// Sets an input's value, rate and acceleration for the next step (a driver's law that reads

@@ -2,17 +2,24 @@
 // must equal their definitions as sums over material points (FFRF reference sheet:
 // M = sum m_i L_i^T L_i, Q_v = sum m_i L_i^T (dL_i/dt) v, with dL_i/dt by finite differences
 // along the motion), for orthonormal modes and for a general mode set (not mass-orthogonal to
-// rigid motion, not orthonormal), where no term vanishes. Then conservation laws: a free
-// spinning flexible body keeps its energy and angular momentum.
+// rigid motion, not orthonormal), where no term vanishes (the body model alone). Then
+// conservation laws, on the runtime model (one free body): a free spinning flexible body keeps
+// its energy and angular momentum.
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include <doctest/doctest.h>
 
-#include <flexstress/dynamics/implicit_integrator.hpp>
+#include <flexstress/dynamics/body_model.hpp>
 #include <flexstress/fe/rigid_body_modes.hpp>
+#include <flexstress/model/all.hpp>
+#include <flexstress/reduction/component_modes.hpp>
+#include <flexstress/reduction/inertia_integrals.hpp>
+#include <flexstress/reduction/orthonormalize.hpp>
 
-#include "fixtures.hpp"
+#include "dynamics/fixtures.hpp"
 
 namespace test_ffrf_body {
 
@@ -171,45 +178,65 @@ TEST_CASE("mass matrix and quadratic velocity vector equal their point-sum defin
 
 namespace {
 
-using FreeBody = Scene<double, Bodies<FFRFBody<6>>, Joints<>, Effects<QuadraticVelocity>>;
+// finalize(), failing with its message.
+Model<double> finalized(const ModelBuilder<double>& b) {
+  auto m = b.finalize();
+  if (!m.ok()) FAIL(m.error().what());
+  return std::move(*m);
+}
+
+// A free flexible body (no gravity, no joints; the quadratic velocity terms are always on) with
+// `modes` modes and integrator settings `set`.
+struct FreeBody {
+  Model<double> model;
+  BodyId body;
+};
+FreeBody free_body(const reduction::ModalBodyData& data, int modes,
+                   const ImplicitSettings<double>& set) {
+  ModelBuilder<double> b;
+  const BodyId body = b.add_flexible_body("body", data, modes);
+  b.settings() = set;
+  return {finalized(b), body};
+}
+
+// Sets a body's velocities [R_dot (global); w (body); p_dot] at rest shape (p = 0).
+void set_velocities(const Model<double>& m, Data<double>& d, BodyId body, const VectorXd& v) {
+  set_body_velocity(m, d, body, Vector3d(v.head<3>()), Vector3d(v.segment<3>(3)));
+  const Index modes = v.size() - 6;
+  REQUIRE(set_modal_state(m, d, body, VectorXd::Zero(modes), v.tail(modes)).ok());
+}
 
 // A thin steel strip (1 m, 20 x 5 mm) free in space: first bending mode about 27 Hz, so a spin
 // of a few rad/s couples rigid rotation and deformation visibly.
 struct SpinningStrip {
-  FreeBody scene;
-  FreeBody::State initial;
-  explicit SpinningStrip(const reduction::ModalBodyData& data) {
-    auto body = FFRFBody<6>::from_modal_data(data);
-    REQUIRE(body.ok());
-    scene.body<0>() = *body;
-    initial.v << 0.1, -0.2, 0.05, 2.0, 6.0, 1.0, 0.3, -0.2, 0.1, 0.05, 0.0, 0.02;
+  const reduction::ModalBodyData& data;
+  VectorXd initial_v;
+  explicit SpinningStrip(const reduction::ModalBodyData& d) : data(d), initial_v(12) {
+    initial_v << 0.1, -0.2, 0.05, 2.0, 6.0, 1.0, 0.3, -0.2, 0.1, 0.05, 0.0, 0.02;
   }
   struct Drift {
     double energy = 0, momentum = 0;
   };
   Drift run(double h, int steps, double rho = 1.0) const {
-    ImplicitIntegrator<FreeBody>::Settings set;
+    ImplicitSettings<double> set;
     set.step = h;
     set.spectral_radius = rho;
-    ImplicitIntegrator<FreeBody> integ(scene, set);
-    FreeBody::State s = initial;
-    REQUIRE(integ.initialize(s).ok());
-    auto& w = integ.workspace();
-    scene.update_kinematics(s, w);
-    const double e0 = scene.energy(w).total();
-    const Vector3d h0 = scene.body<0>().angular_momentum(std::get<0>(w.kin));
-    Drift d;
+    const FreeBody f = free_body(data, 6, set);
+    const Model<double>& m = f.model;
+    Data<double> d(m);
+    set_velocities(m, d, f.body, initial_v);
+    REQUIRE(initialize(m, d).ok());
+    const double e0 = energy(m, d).total();
+    const Vector3d h0 = momentum(m, d, f.body).angular;
+    Drift dr;
     for (int i = 0; i < steps; ++i) {
-      REQUIRE(integ.step(s) == StepStatus::ok);
-      scene.update_kinematics(s, w);
-      d.energy = std::max(d.energy, std::abs(scene.energy(w).total() - e0) / e0);
-      d.momentum =
-          std::max(d.momentum,
-                   (scene.body<0>().angular_momentum(std::get<0>(w.kin)) - h0).norm() / h0.norm());
+      REQUIRE(step(m, d) == StepStatus::ok);
+      dr.energy = std::max(dr.energy, std::abs(energy(m, d).total() - e0) / e0);
+      dr.momentum = std::max(dr.momentum, (momentum(m, d, f.body).angular - h0).norm() / h0.norm());
     }
     // The Euler parameters stay unit length.
-    CHECK(std::abs(s.coordinates<0>().theta.norm() - 1.0) < 1e-12);
-    return d;
+    CHECK(std::abs(body_orientation(m, d, f.body).norm() - 1.0) < 1e-12);
+    return dr;
   }
 };
 
@@ -236,30 +263,23 @@ TEST_CASE("free spinning flexible body conserves energy and angular momentum") {
 
 TEST_CASE("a general (non-orthonormal) mode set conserves too") {
   const LumpedBar bar;
-  using GeneralScene =
-      Scene<double, Bodies<FFRFBody<kModes>>, Joints<>, Effects<QuadraticVelocity>>;
-  GeneralScene scene;
-  auto body = FFRFBody<kModes>::from_modal_data(bar.general);
-  REQUIRE(body.ok());
-  scene.body<0>() = *body;
-  ImplicitIntegrator<GeneralScene>::Settings set;
+  ImplicitSettings<double> set;
   set.step = 2e-5;
   set.spectral_radius = 1.0;
-  ImplicitIntegrator<GeneralScene> integ(scene, set);
-  GeneralScene::State s;
-  s.v << 0.2, 0.1, -0.3, 3.0, -1.0, 8.0, 0.01, -0.02, 0.015, 0.01;
-  REQUIRE(integ.initialize(s).ok());
-  auto& w = integ.workspace();
-  scene.update_kinematics(s, w);
-  const double e0 = scene.energy(w).total();
-  const Vector3d h0 = scene.body<0>().angular_momentum(std::get<0>(w.kin));
+  const FreeBody f = free_body(bar.general, kModes, set);
+  const Model<double>& m = f.model;
+  Data<double> d(m);
+  VectorXd v(6 + kModes);
+  v << 0.2, 0.1, -0.3, 3.0, -1.0, 8.0, 0.01, -0.02, 0.015, 0.01;
+  set_velocities(m, d, f.body, v);
+  REQUIRE(initialize(m, d).ok());
+  const double e0 = energy(m, d).total();
+  const Vector3d h0 = momentum(m, d, f.body).angular;
   double de = 0, dh = 0;
   for (int i = 0; i < 20000; ++i) {
-    REQUIRE(integ.step(s) == StepStatus::ok);
-    scene.update_kinematics(s, w);
-    de = std::max(de, std::abs(scene.energy(w).total() - e0) / e0);
-    dh = std::max(dh,
-                  (scene.body<0>().angular_momentum(std::get<0>(w.kin)) - h0).norm() / h0.norm());
+    REQUIRE(step(m, d) == StepStatus::ok);
+    de = std::max(de, std::abs(energy(m, d).total() - e0) / e0);
+    dh = std::max(dh, (momentum(m, d, f.body).angular - h0).norm() / h0.norm());
   }
   MESSAGE("general modes, 2e4 steps: energy drift " << de << ", momentum drift " << dh);
   CHECK(de < 1e-6);
@@ -274,35 +294,37 @@ TEST_CASE("the Newton tolerance does not depend on how the modes are normalized"
   // modal corrections decide when Newton stops. (In modal units the tenfold body's corrections
   // look 10 times smaller and it stops earlier: 8813 against 9721 iterations, measured.)
   const LumpedBar bar;
-  using FreeScene = Scene<double, Bodies<Body>, Joints<>, Effects<QuadraticVelocity>>;
   auto unit = Body::from_modal_data(bar.unit_modes);
   auto tenfold = Body::from_modal_data(bar.tenfold_modes);
   REQUIRE(unit.ok());
   REQUIRE(tenfold.ok());
   CHECK(tenfold->modal_displacement_scale().isApprox(10.0 * unit->modal_displacement_scale()));
-  FreeScene a, b;
-  a.body<0>() = *unit;
-  b.body<0>() = *tenfold;
-  ImplicitIntegrator<FreeScene>::Settings set;
+  ImplicitSettings<double> set;
   set.acceleration_tolerance = 1e-7;  // several iterations per step
-  ImplicitIntegrator<FreeScene> ia(a, set), ib(b, set);
-  FreeScene::State sa, sb;
-  sa.v << 0, 0, 0, 0.5, -0.2, 1.0, 2.0, -3.0, 2.5, 1.5;
-  sb.v = sa.v;
-  sb.v.tail<kModes>() /= 10.0;
-  REQUIRE(ia.initialize(sa).ok());
-  REQUIRE(ib.initialize(sb).ok());
+  const FreeBody a = free_body(bar.unit_modes, kModes, set);
+  const FreeBody b = free_body(bar.tenfold_modes, kModes, set);
+  Data<double> da(a.model), db(b.model);
+  VectorXd va(6 + kModes);
+  va << 0, 0, 0, 0.5, -0.2, 1.0, 2.0, -3.0, 2.5, 1.5;
+  VectorXd vb = va;
+  vb.tail<kModes>() /= 10.0;
+  set_velocities(a.model, da, a.body, va);
+  set_velocities(b.model, db, b.body, vb);
+  REQUIRE(initialize(a.model, da).ok());
+  REQUIRE(initialize(b.model, db).ok());
   double dp = 0, dr = 0, p_range = 0;
   for (int i = 0; i < 2000; ++i) {
-    REQUIRE(ia.step(sa) == StepStatus::ok);
-    REQUIRE(ib.step(sb) == StepStatus::ok);
-    const auto& ca = sa.coordinates<0>();
-    const auto& cb = sb.coordinates<0>();
-    dp = std::max(dp, (ca.p - 10.0 * cb.p).cwiseAbs().maxCoeff());
-    dr = std::max(dr, (ca.position - cb.position).cwiseAbs().maxCoeff());
-    p_range = std::max(p_range, ca.p.cwiseAbs().maxCoeff());
+    REQUIRE(step(a.model, da) == StepStatus::ok);
+    REQUIRE(step(b.model, db) == StepStatus::ok);
+    const VectorXd pa = modal_coordinates(a.model, da, a.body);
+    const VectorXd pb = modal_coordinates(b.model, db, b.body);
+    dp = std::max(dp, (pa - 10.0 * pb).cwiseAbs().maxCoeff());
+    dr = std::max(dr, (body_position(a.model, da, a.body) - body_position(b.model, db, b.body))
+                          .cwiseAbs()
+                          .maxCoeff());
+    p_range = std::max(p_range, pa.cwiseAbs().maxCoeff());
   }
-  const long ita = ia.statistics().iterations, itb = ib.statistics().iterations;
+  const long ita = da.statistics.iterations, itb = db.statistics.iterations;
   MESSAGE("iterations " << ita << " and " << itb << " in 2000 steps; largest differences: " << dr
                         << " m (frame), " << dp << " of " << p_range << " (modes)");
   CHECK(std::abs(ita - itb) <= ita / 100);

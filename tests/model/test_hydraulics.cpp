@@ -1,17 +1,15 @@
-// The hydraulic drive (dynamics/hydraulic_cylinder.hpp) against the closed-form results of
-// valve-controlled cylinder theory (Merritt, Hydraulic Control Systems, 1967, ch. 5 and 6;
-// Watton, Fluid Power Systems, 1989, ch. 4): a mass on a cylinder slides along a prismatic
-// joint, pushed by the oil and, in the second case, braked by a viscous damper.
+// The hydraulic drive (dynamics/hydraulic_cylinder.hpp, added by ModelBuilder's
+// add_hydraulic_cylinder) against the closed-form results of valve-controlled cylinder theory
+// (Merritt, Hydraulic Control Systems, 1967, ch. 5 and 6; Watton, Fluid Power Systems, 1989,
+// ch. 4): a mass on a cylinder slides along a prismatic joint, pushed by the oil and, in the
+// second case, braked by a viscous damper.
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include <doctest/doctest.h>
 
-#include <flexstress/dynamics/checkpoint.hpp>
-#include <flexstress/dynamics/energy_audit.hpp>
-#include <flexstress/dynamics/hydraulic_cylinder.hpp>
-#include <flexstress/dynamics/implicit_integrator.hpp>
+#include <flexstress/model/all.hpp>
 
 namespace test_hydraulics {
 
@@ -28,27 +26,28 @@ constexpr double kMass = 200.0, kBeta = 1.4e9, kDead = 1e-4, kStroke = 0.5, kRet
 constexpr double kSupply = 160e5, kTank = 1e5;
 const double kGain = 1e-3 / std::sqrt(35e5);
 
-using Slide =
-    Scene<double, Bodies<RigidBody>, Joints<Prismatic<ground, 0>>,
-          Effects<SpringDampers, HydraulicDrive>,
-          ForceElements<HydraulicCylinder<ground, 0, PolynomialLaw>, SpringDamper<ground, 0>>,
-          FixedGround<double>, 0>;
+/// The slide: one rigid body on a prismatic joint along the ground's z, the cylinder and a
+/// viscous damper from the ground's origin to the slide's frame.
+struct Slide {
+  Model<double> model;
+  BodyId slide;
+  ForceId cylinder;
+};
 
 // The slide at piston position x0, annulus area a2 (= bore for a double-rod cylinder), command
-// u, damper c; chamber pressures p1, p2; initial velocity v0.
+// u, damper c; chamber pressures p1, p2 (the cylinder's starting state).
 struct Run {
   std::vector<double> t, x, v;
   double energy_residual = 0, energy_change = 0;  ///< the energy audit's max |r| and |E - E0|
 };
-Slide make_slide(double a2, double u, double c) {
-  Slide scene;
-  scene.body<0>() = RigidBody::rigid(kMass, Vector3d::Zero(), Matrix3d::Identity());
-  scene.joint<0>().marker_i = fixed_marker<double>(Vector3d::Zero());
-  scene.joint<0>().marker_j = make_marker(scene.body<0>(), -1, Vector3d::Zero());
-  auto& cyl = scene.force<0>();
-  cyl.marker_i = fixed_marker<double>(Vector3d::Zero());
-  cyl.marker_j = make_marker(scene.body<0>(), -1, Vector3d::Zero());
-  auto& hp = cyl.params;
+Slide make_slide(double a2, double x0, double u, double c, double p1, double p2) {
+  ModelBuilder<double> b;
+  const BodyId body = b.add_rigid_body("slide", kMass, Vector3d::Zero(), Matrix3d::Identity());
+  b.set_initial_pose(body, Vector3d(0, 0, kRetracted + x0));
+  const MarkerId base = b.add_marker("base", b.ground(), -1, Vector3d::Zero());
+  const MarkerId carriage = b.add_marker("carriage", body, -1, Vector3d::Zero());
+  b.add_joint("guide", JointKind::prismatic, base, carriage);
+  HydraulicParams<double> hp;
   hp.bore_area = kBore;
   hp.annulus_area = a2;
   hp.stroke = kStroke;
@@ -58,36 +57,42 @@ Slide make_slide(double a2, double u, double c) {
   hp.supply_pressure = kSupply;
   hp.tank_pressure = kTank;
   hp.flow_gain = kGain;
-  hp.command.s0 = u;
-  auto& damper = scene.force<1>();
-  damper.marker_i = cyl.marker_i;
-  damper.marker_j = cyl.marker_j;
-  damper.params.damping = c;
-  return scene;
+  const ForceId cylinder = b.add_hydraulic_cylinder(
+      "cylinder", base, carriage, hp, MotionLaw<double>::constant_acceleration(u), p1, p2);
+  SpringDamperParams<double> damper;
+  damper.damping = c;
+  b.add_spring_damper("damper", base, carriage, damper);
+  auto m = b.finalize();
+  if (!m.ok()) FAIL(m.error().what());
+  return {std::move(*m), body, cylinder};
 }
 
+/// The slide's travel x (from the retracted position) and velocity along the guide.
+double travel(const Slide& s, const Data<double>& d) {
+  return body_position(s.model, d, s.slide).z() - kRetracted;
+}
+double speed(const Slide& s, const Data<double>& d) {
+  return body_velocity(s.model, d, s.slide).z();
+}
+
+// Initial velocity v0, step h, for `duration` seconds.
 Run slide(double a2, double x0, double u, double c, double p1, double p2, double v0, double h,
           double duration) {
-  const Slide scene = make_slide(a2, u, c);
-  ImplicitIntegrator<Slide>::Settings settings;
-  settings.step = h;
-  ImplicitIntegrator<Slide> integ(scene, settings);
-  Slide::State s;
-  s.coordinates<0>().position = Vector3d(0, 0, kRetracted + x0);
-  s.v(2) = v0;
-  std::get<0>(s.force_states).p1 = p1;
-  std::get<0>(s.force_states).p2 = p2;
-  REQUIRE(integ.initialize(s).ok());
-  EnergyAudit<Slide> audit(scene);
-  audit.start(s);
+  const Slide s = make_slide(a2, x0, u, c, p1, p2);
+  Data<double> d(s.model);
+  d.settings.step = h;
+  set_body_velocity(s.model, d, s.slide, Vector3d(0, 0, v0), Vector3d::Zero());
+  REQUIRE(initialize(s.model, d).ok());
+  EnergyBalance<double> audit;
+  audit.start(s.model, d);
   Run r;
   const int steps = static_cast<int>(std::lround(duration / h));
   for (int i = 0; i < steps; ++i) {
-    REQUIRE(integ.step(s) == StepStatus::ok);
-    r.t.push_back(s.t);
-    r.x.push_back(s.coordinates<0>().position.z() - kRetracted);
-    r.v.push_back(s.v(2));
-    audit.record(s);
+    REQUIRE(step(s.model, d) == StepStatus::ok);
+    r.t.push_back(d.t);
+    r.x.push_back(travel(s, d));
+    r.v.push_back(speed(s, d));
+    audit.record(s.model, d);
   }
   r.energy_residual = audit.max_abs_residual();
   r.energy_change = audit.max_energy_change();
@@ -155,59 +160,63 @@ TEST_CASE("energy audit of a hydraulic scene: the oil force's work balances the 
   CHECK(r.energy_residual < 1e-3 * r.energy_change);
 }
 
-// Bad parameters are reported by initialize(), naming the element and the parameter, instead of
-// dividing by a zero chamber volume inside the step.
+// Bad parameters are reported, naming the element and the parameter, instead of dividing by a
+// zero chamber volume inside the step: the runtime model checks them in finalize() (the
+// compile-time scene did in initialize()).
 TEST_CASE("a hydraulic cylinder with bad parameters is refused at initialize") {
-  Slide scene;
-  scene.body<0>() = RigidBody::rigid(kMass, Vector3d::Zero(), Matrix3d::Identity());
-  scene.joint<0>().marker_i = fixed_marker<double>(Vector3d::Zero());
-  scene.joint<0>().marker_j = make_marker(scene.body<0>(), -1, Vector3d::Zero());
-  auto& hp = scene.force<0>().params;
-  hp.bore_area = hp.annulus_area = kBore;
-  hp.stroke = kStroke;
-  hp.dead_volume_cap = kDead;  // the rod side's is left at 0
-  hp.supply_pressure = kSupply;
-  ImplicitIntegrator<Slide> integ(scene);
-  Slide::State s;
-  s.coordinates<0>().position = Vector3d(0, 0, 0.3);
-  const Status st = integ.initialize(s);
-  REQUIRE_FALSE(st.ok());
-  MESSAGE(st.error().what());
-  CHECK(st.error().what().find("force element 0") != std::string::npos);
-  CHECK(st.error().what().find("dead volume") != std::string::npos);
-  hp.dead_volume_rod = kDead;  // fixed: it starts
-  CHECK(integ.initialize(s).ok());
+  const auto build = [](double dead_volume_rod) {
+    ModelBuilder<double> b;
+    const BodyId body = b.add_rigid_body("slide", kMass, Vector3d::Zero(), Matrix3d::Identity());
+    b.set_initial_pose(body, Vector3d(0, 0, 0.3));
+    const MarkerId base = b.add_marker("base", b.ground(), -1, Vector3d::Zero());
+    const MarkerId carriage = b.add_marker("carriage", body, -1, Vector3d::Zero());
+    b.add_joint("guide", JointKind::prismatic, base, carriage);
+    HydraulicParams<double> hp;
+    hp.bore_area = hp.annulus_area = kBore;
+    hp.stroke = kStroke;
+    hp.dead_volume_cap = kDead;
+    hp.dead_volume_rod = dead_volume_rod;
+    hp.supply_pressure = kSupply;
+    b.add_hydraulic_cylinder("cylinder", base, carriage, hp,
+                             MotionLaw<double>::constant_acceleration(0.0), 0.0, 0.0);
+    return b.finalize();
+  };
+  const auto refused = build(0.0);  // the rod side's dead volume is left at 0
+  REQUIRE_FALSE(refused.ok());
+  MESSAGE(refused.error().what());
+  // The runtime model names the element ("force element 0" on the compile-time scene).
+  CHECK(refused.error().what().find("force 'cylinder'") != std::string::npos);
+  CHECK(refused.error().what().find("dead volume") != std::string::npos);
+  const auto fixed = build(kDead);  // fixed: it starts
+  REQUIRE(fixed.ok());
+  Data<double> d(*fixed);
+  CHECK(initialize(*fixed, d).ok());
 }
 
 // Checkpoints carry the chamber pressures (force-element states) with the rest: a run stopped
 // mid-stroke and restored ends bit-identical to one that never stopped.
 TEST_CASE("checkpoint of a hydraulic scene restores the chamber pressures bit-identically") {
-  const Slide scene = make_slide(kBore - kRod, 0.3, 2000.0);
-  ImplicitIntegrator<Slide>::Settings settings;
-  settings.step = 1e-4;
-  ImplicitIntegrator<Slide> straight(scene, settings);
-  Slide::State a;
-  a.coordinates<0>().position = Vector3d(0, 0, kRetracted + 0.2);
-  std::get<0>(a.force_states).p1 = 50e5;
-  std::get<0>(a.force_states).p2 = 50e5 * kBore / (kBore - kRod);
-  REQUIRE(straight.initialize(a).ok());
+  const Slide s = make_slide(kBore - kRod, 0.2, 0.3, 2000.0, 50e5, 50e5 * kBore / (kBore - kRod));
+  Data<double> a(s.model);
+  a.settings.step = 1e-4;
+  REQUIRE(initialize(s.model, a).ok());
   std::vector<unsigned char> bytes;
   for (int i = 0; i < 600; ++i) {
-    if (i == 200) bytes = *save_checkpoint(a, straight);
-    REQUIRE(straight.step(a) == StepStatus::ok);
+    if (i == 200) bytes = *save_checkpoint(s.model, a);
+    REQUIRE(step(s.model, a) == StepStatus::ok);
   }
-  ImplicitIntegrator<Slide> resumed(scene, settings);
-  Slide::State b;
-  REQUIRE(restore_checkpoint(bytes.data(), bytes.size(), b, resumed).ok());
-  for (int i = 200; i < 600; ++i) REQUIRE(resumed.step(b) == StepStatus::ok);
-  const auto& pa = std::get<0>(a.force_states);
-  const auto& pb = std::get<0>(b.force_states);
-  MESSAGE("after 60 ms: x = " << a.coordinates<0>().position.z() - kRetracted << " m, p1 = "
-                              << pa.p1 * 1e-5 << " bar, p2 = " << pa.p2 * 1e-5 << " bar");
-  CHECK(a.coordinates<0>().position.z() > kRetracted + 0.2);  // the open valve moved it
+  Data<double> b(s.model);
+  REQUIRE(restore_checkpoint(s.model, b, bytes.data(), bytes.size()).ok());
+  for (int i = 200; i < 600; ++i) REQUIRE(step(s.model, b) == StepStatus::ok);
+  // (No read-out gives a force element's state by handle: Data::force_states, by ForceId.)
+  const auto& pa = a.force_states[static_cast<std::size_t>(s.cylinder.index)];
+  const auto& pb = b.force_states[static_cast<std::size_t>(s.cylinder.index)];
+  MESSAGE("after 60 ms: x = " << travel(s, a) << " m, p1 = " << pa.p1 * 1e-5
+                              << " bar, p2 = " << pa.p2 * 1e-5 << " bar");
+  CHECK(travel(s, a) > 0.2);  // the open valve moved it
   CHECK(pb.p1 == pa.p1);
   CHECK(pb.p2 == pa.p2);
-  CHECK(b.coordinates<0>().position == a.coordinates<0>().position);
+  CHECK(body_position(s.model, b, s.slide) == body_position(s.model, a, s.slide));
   CHECK(b.v == a.v);
   CHECK(b.lambda == a.lambda);
 }

@@ -1,30 +1,22 @@
 // Per-step cost of the dynamics (Google Benchmark; build Release). Each benchmark times every one
 // of its steps and reports the median and the worst (counters median_us, worst_us), plus the
 // Newton iterations per step; the benchmark's own time is the whole run.
-//   hinged_implicit<N, L>   a 2 m steel beam (RHS 40x20x2, 24 elements) with N Craig-Bampton
-//                           modes on a revolute joint, swinging under gravity from horizontal,
-//                           1e5 steps at h = 1 ms; L = 64: fixed-size storage, 0: dynamic
-//   hinged_effects<E>       the same with N = 10 and only the effects E (spinning at 2 rad/s so
-//                           every variant moves): the cost of each effect
-//   hinged_rk4<N>           explicit RK4 at its stable step (h w_max = 2), 1e5 steps
-// The crane's rows are in bench_crane.cpp.
-//
-// Every template argument list instantiates a scene and its integrator (about a minute of
-// compile time each), so the sweep is sparse and CI does not build this program
-// (FLEXSTRESS_BENCH_DYNAMICS=OFF there). Results: docs/performance.md.
+//   hinged_implicit/modes:N  a 2 m steel beam (RHS 40x20x2, 24 elements) with N Craig-Bampton
+//                            modes on a revolute joint, swinging under gravity from horizontal,
+//                            1e5 steps at h = 1 ms; counter fixed_kernel: 1 where N has
+//                            fixed-size body kernels (FLEXSTRESS_MODE_COUNTS), 0 bounded
+//   hinged_effects/...       the same with N = 10 and only the effects switched on (spinning at
+//                            2 rad/s so every variant moves): the cost of each effect
+//   hinged_rk4/modes:N       explicit RK4 at its stable step (h w_max = 2), 1e5 steps
+// The crane's rows are in bench_crane.cpp. Results: docs/performance.md.
 //
 // Run: ./build/bench/bench_dynamics --benchmark_counters_tabular=true
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <optional>
-#include <vector>
 
 #include <benchmark/benchmark.h>
 
-#include <flexstress/dynamics/explicit_integrator.hpp>
-#include <flexstress/dynamics/implicit_integrator.hpp>
 #include <flexstress/fe/beam_line.hpp>
+#include <flexstress/model/all.hpp>
 #include <flexstress/reduction/modal_body_data.hpp>
 
 #include "step_timing.hpp"
@@ -60,85 +52,98 @@ struct HingedBeam {
   }
 };
 
-template <int N, class Eff = Effects<Gravity, QuadraticVelocity, ModalDamping>, int L = 64>
-using Hinged = Scene<double, Bodies<FFRFBody<N>>, Joints<Revolute<ground, 0>>, Eff, ForceElements<>,
-                     FixedGround<double>, L>;
+struct HingedEffects {
+  bool gravity = true, quadratic_velocity = true, damping = true;
+};
 
-template <class SceneT>
-std::optional<SceneT> make_hinged(const HingedBeam& beam) {
+struct Hinged {
+  Model<double> model;
+  BodyId beam;
+};
+
+std::optional<Hinged> make_hinged(const HingedBeam& beam, int modes, HingedEffects e = {}) {
   if (!beam.ok) return std::nullopt;
-  auto body = SceneT::template BodyType<0>::from_modal_data(beam.data);
-  if (!body) return std::nullopt;
-  SceneT scene;
-  scene.template body<0>() = *body;
-  scene.template joint<0>().marker_i = fixed_marker<double>(Vector3d::Zero());
-  scene.template joint<0>().marker_j =
-      make_marker(scene.template body<0>(), beam.hinge, Vector3d::Zero());
-  return scene;
+  ModelBuilder<double> b;
+  Hinged h;
+  h.beam = b.add_flexible_body("beam", beam.data, modes);
+  if (!e.damping) b.set_damping_ratio(h.beam, 0.0);
+  b.add_joint("hinge", JointKind::revolute, b.add_marker("pivot", b.ground(), -1),
+              b.add_marker("root", h.beam, beam.hinge));
+  if (e.gravity) b.set_gravity(Vector3d(0, -9.81, 0));
+  if (!e.quadratic_velocity) b.approximate_without_quadratic_velocity();
+  auto model = b.finalize();
+  if (!model) return std::nullopt;
+  h.model = std::move(*model);
+  return h;
 }
 
-template <int N, int L>
+void newton_counters(benchmark::State& bench, const Data<double>& d) {
+  bench.counters["newton_its"] =
+      static_cast<double>(d.statistics.iterations) / static_cast<double>(d.statistics.steps);
+}
+
 void hinged_implicit(benchmark::State& bench) {
-  using S = Hinged<N, Effects<Gravity, QuadraticVelocity, ModalDamping>, L>;
-  const HingedBeam beam(N);
-  auto scene = make_hinged<S>(beam);
-  if (!scene) return bench.SkipWithError("hinged beam setup failed");
-  ImplicitIntegrator<S> integ(*scene);
-  typename S::State s;
-  if (!integ.initialize(s)) return bench.SkipWithError("initialize failed");
-  bench_support::time_steps(bench, integ, s, kSteps);
-  bench.counters["newton_its"] = static_cast<double>(integ.statistics().iterations) /
-                                 static_cast<double>(integ.statistics().steps);
-  bench.counters["nv"] = S::nv;
+  const int modes = static_cast<int>(bench.range(0));
+  const HingedBeam beam(modes);
+  auto h = make_hinged(beam, modes);
+  if (!h) return bench.SkipWithError("hinged beam setup failed");
+  Data<double> d(h->model);
+  if (!initialize(h->model, d)) return bench.SkipWithError("initialize failed");
+  bench_support::time_steps(
+      bench, [&] { return step(h->model, d); }, kSteps);
+  newton_counters(bench, d);
+  bench.counters["nv"] = h->model.num_velocities();
+  bench.counters["fixed_kernel"] = h->model.body(h->beam).kernels->fixed_modes == modes ? 1 : 0;
 }
 
-template <class Eff>
 void hinged_effects(benchmark::State& bench) {
-  using S = Hinged<10, Eff>;
+  HingedEffects e;
+  e.gravity = bench.range(0) != 0;
+  e.quadratic_velocity = bench.range(1) != 0;
+  e.damping = bench.range(2) != 0;
   const HingedBeam beam(10);
-  auto scene = make_hinged<S>(beam);
-  if (!scene) return bench.SkipWithError("hinged beam setup failed");
-  ImplicitIntegrator<S> integ(*scene);
-  typename S::State s;
-  s.v(5) = 2.0;
-  if (!integ.initialize(s)) return bench.SkipWithError("initialize failed");
-  bench_support::time_steps(bench, integ, s, kSteps);
-  bench.counters["newton_its"] = static_cast<double>(integ.statistics().iterations) /
-                                 static_cast<double>(integ.statistics().steps);
+  auto h = make_hinged(beam, 10, e);
+  if (!h) return bench.SkipWithError("hinged beam setup failed");
+  Data<double> d(h->model);
+  set_body_velocity(h->model, d, h->beam, Vector3d::Zero(), Vector3d(0, 0, 2.0));
+  if (!initialize(h->model, d)) return bench.SkipWithError("initialize failed");
+  bench_support::time_steps(
+      bench, [&] { return step(h->model, d); }, kSteps);
+  newton_counters(bench, d);
 }
 
-template <int N>
 void hinged_rk4(benchmark::State& bench) {
-  using S = Hinged<N>;
-  const HingedBeam beam(N);
-  auto scene = make_hinged<S>(beam);
-  if (!scene) return bench.SkipWithError("hinged beam setup failed");
-  typename ExplicitIntegrator<S>::Settings es;
-  es.step = 2.0 / scene->max_modal_frequency();
-  ExplicitIntegrator<S> integ(*scene, es);
-  typename S::State s;
-  bench_support::time_steps(bench, integ, s, kSteps);
+  const int modes = static_cast<int>(bench.range(0));
+  const HingedBeam beam(modes);
+  auto h = make_hinged(beam, modes);
+  if (!h) return bench.SkipWithError("hinged beam setup failed");
+  ExplicitSettings<double> es;
+  es.step = 2.0 / stability_number(h->model, 1.0);  // h w_max = 2
+  Data<double> d(h->model);
+  bench_support::time_steps(
+      bench, [&] { return explicit_step(h->model, d, es); }, kSteps);
   bench.counters["h_us"] = es.step * 1e6;
 }
 
 }  // namespace
 
 #define FLEXSTRESS_ONCE(b) b->Iterations(1)->Unit(benchmark::kMillisecond)
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_implicit, 1, 64));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_implicit, 2, 64));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_implicit, 4, 64));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_implicit, 10, 64));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_implicit, 16, 64));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_implicit, 24, 64));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_implicit, 40, 64));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_implicit, 10, 0));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_implicit, 40, 0));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_effects, Effects<>));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_effects, Effects<Gravity>));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_effects, Effects<Gravity, QuadraticVelocity>));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_effects,
-                                   Effects<Gravity, QuadraticVelocity, ModalDamping>));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_rk4, 4));
-FLEXSTRESS_ONCE(BENCHMARK_TEMPLATE(hinged_rk4, 10));
+FLEXSTRESS_ONCE(BENCHMARK(hinged_implicit)
+                    ->ArgName("modes")
+                    ->Arg(1)
+                    ->Arg(2)
+                    ->Arg(4)
+                    ->Arg(10)
+                    ->Arg(16)
+                    ->Arg(24)
+                    ->Arg(40));
+// Effects switched on in turn: none, gravity, + quadratic velocity, + modal damping.
+FLEXSTRESS_ONCE(BENCHMARK(hinged_effects)
+                    ->ArgNames({"gravity", "quadratic_velocity", "damping"})
+                    ->Args({0, 0, 0})
+                    ->Args({1, 0, 0})
+                    ->Args({1, 1, 0})
+                    ->Args({1, 1, 1}));
+FLEXSTRESS_ONCE(BENCHMARK(hinged_rk4)->ArgName("modes")->Arg(4)->Arg(10));
 
 BENCHMARK_MAIN();

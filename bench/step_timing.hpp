@@ -1,4 +1,5 @@
-// Per-step timing for the dynamics benchmarks (bench_dynamics.cpp, bench_crane.cpp).
+// Per-step timing for the dynamics benchmarks (bench_dynamics.cpp, bench_crane.cpp,
+// bench_geometric_stiffening.cpp).
 #pragma once
 
 #include <algorithm>
@@ -12,16 +13,17 @@
 
 namespace flexstress::bench_support {
 
-/// Times `steps` calls of step(s) one by one; reports median, worst and mean (us) as counters.
-template <class Integrator, class StateT>
-void time_steps(benchmark::State& bench, Integrator& integ, StateT& s, int steps) {
+/// Times `steps` calls of step_once() (returning a StepStatus) one by one; reports median, worst
+/// and mean (us) as counters.
+template <class StepOnce>
+void time_steps(benchmark::State& bench, StepOnce&& step_once, int steps) {
   using Clock = std::chrono::steady_clock;
   std::vector<double> us;
   us.reserve(static_cast<std::size_t>(steps));
   for (auto _ : bench) {
     for (int i = 0; i < steps; ++i) {
       const auto a = Clock::now();
-      const StepStatus st = integ.step(s);
+      const StepStatus st = step_once();
       const auto b = Clock::now();
       if (st != StepStatus::ok) {
         bench.SkipWithError(to_string(st));

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "flexstress/fatigue/sn_curve.hpp"
 #include "flexstress/model/all.hpp"
 #include "flexstress/reduction/modal_body_io.hpp"
 #include "flexstress/version.hpp"
@@ -342,6 +343,50 @@ int fs_builder_add_spring_damper(fs_model_builder* b, const char* name, int i, i
   });
 }
 
+int fs_builder_add_point_load(fs_model_builder* b, const char* name, int marker,
+                              fs_point_load_callback callback, void* user) {
+  return guarded_handle("fs_builder_add_point_load", [&] {
+    if (!b || !name || !callback)
+      return null_argument("fs_builder_add_point_load"), FS_INVALID_HANDLE;
+    // The C callback has the C++ one's signature.
+    return b->builder.add_point_load(name, fsx::MarkerId{marker}, callback, user).index;
+  });
+}
+
+int fs_builder_add_stress_outputs(fs_model_builder* b, const char* name, int body,
+                                  const double* rows, int num_outputs, int num_modes) {
+  return guarded_handle("fs_builder_add_stress_outputs", [&] {
+    if (!b || !name || !rows)
+      return null_argument("fs_builder_add_stress_outputs"), FS_INVALID_HANDLE;
+    if (num_outputs < 1 || num_modes < 0) {
+      fail(FS_ERROR_INVALID_ARGUMENT, std::string("fs_builder_add_stress_outputs: outputs '") +
+                                          name + "': " + std::to_string(num_outputs) + " x " +
+                                          std::to_string(num_modes) + " rows");
+      return FS_INVALID_HANDLE;
+    }
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    const Eigen::MatrixXd f = Eigen::Map<const RowMajor>(rows, num_outputs, num_modes);
+    return b->builder.add_stress_outputs(name, fsx::BodyId{body}, f).index;
+  });
+}
+
+int fs_builder_add_damage_meter(fs_model_builder* b, const char* name, int output, double fat,
+                                double lower, double upper, double scale) {
+  return guarded_handle("fs_builder_add_damage_meter", [&] {
+    if (!b || !name) return null_argument("fs_builder_add_damage_meter"), FS_INVALID_HANDLE;
+    const std::string part = std::string("meter '") + name + "'";
+    auto curve = fsx::fatigue::iiw_normal_curve(fat, fsx::fatigue::IiwBeyondKnee::haibach);
+    if (!curve) return record(b, curve.error(), part);
+    auto model = fsx::fatigue::DamageModel<double>::create(*curve);
+    if (!model) return record(b, model.error(), part);
+    auto grid = fsx::fatigue::ClassGrid<double>::create(lower, upper, 128);
+    if (!grid) return record(b, grid.error(), part);
+    auto meter = fsx::DamageMeter<double>::create(*grid, 0, *model);
+    if (!meter) return record(b, meter.error(), part);
+    return b->builder.add_damage_meter(name, fsx::OutputId{output}, *meter, scale).index;
+  });
+}
+
 int fs_builder_add_input(fs_model_builder* b, const char* name) {
   return guarded_handle("fs_builder_add_input", [&] {
     if (!b || !name) return null_argument("fs_builder_add_input"), FS_INVALID_HANDLE;
@@ -546,6 +591,49 @@ int fs_set_joint_active(fs_data* d, int joint, int active) {
   return FS_OK;
 }
 
+int fs_anchor_joint(fs_data* d, int joint) {
+  return guarded("fs_anchor_joint", [&] {
+    if (!d) return null_argument("fs_anchor_joint");
+    if (!in_range(joint, d->model->joints().size()))
+      return bad_handle("fs_anchor_joint", "joint", joint);
+    const fsx::Status s = fsx::anchor_joint_at(*d->model, d->data, fsx::JointId{joint});
+    return s.ok() ? int(FS_OK) : error_status(d, s.error());
+  });
+}
+
+int fs_set_body_velocity(fs_data* d, int body, const double velocity[3],
+                         const double omega_body[3]) {
+  if (!d || !velocity || !omega_body) return null_argument("fs_set_body_velocity");
+  if (!in_range(body, d->model->bodies().size()))
+    return bad_handle("fs_set_body_velocity", "body", body);
+  fsx::set_body_velocity(*d->model, d->data, fsx::BodyId{body}, vec3(velocity), vec3(omega_body));
+  return FS_OK;
+}
+
+int fs_checkpoint_save(const fs_data* d, unsigned char* buffer, size_t capacity, size_t* size) {
+  return guarded("fs_checkpoint_save", [&] {
+    if (!d || !size) return null_argument("fs_checkpoint_save");
+    auto bytes = fsx::save_checkpoint(*d->model, d->data);
+    if (!bytes) return fail(status_of(bytes.error().code), bytes.error().what());
+    *size = bytes->size();
+    if (!buffer) return int(FS_OK);
+    if (capacity < bytes->size())
+      return fail(FS_ERROR_BUFFER_TOO_SMALL, "fs_checkpoint_save: the checkpoint takes " +
+                                                 std::to_string(bytes->size()) +
+                                                 " bytes, the buffer " + std::to_string(capacity));
+    std::memcpy(buffer, bytes->data(), bytes->size());
+    return int(FS_OK);
+  });
+}
+
+int fs_checkpoint_restore(fs_data* d, const unsigned char* buffer, size_t size) {
+  return guarded("fs_checkpoint_restore", [&] {
+    if (!d || !buffer) return null_argument("fs_checkpoint_restore");
+    const fsx::Status s = fsx::restore_checkpoint(*d->model, d->data, buffer, size);
+    return s.ok() ? int(FS_OK) : error_status(d, s.error());
+  });
+}
+
 int fs_set_law(fs_data* d, int joint, const fs_motion_law* law) {
   return guarded("fs_set_law", [&] {
     if (!d || !law) return null_argument("fs_set_law");
@@ -644,6 +732,34 @@ int fs_statistics_get(const fs_data* d, fs_statistics* out) {
   out->factorizations = s.factorizations;
   out->over_budget = s.over_budget;
   return FS_OK;
+}
+
+int fs_modal_coordinates(const fs_data* d, int body, double* p, int capacity, int* count) {
+  if (const int s = check_body(d, body, p, "fs_modal_coordinates")) return s;
+  const auto modes = fsx::modal_coordinates(*d->model, d->data, fsx::BodyId{body});
+  const int n = static_cast<int>(modes.size());
+  if (count) *count = n;
+  for (int k = 0; k < std::min(n, capacity); ++k) p[k] = modes(k);
+  if (capacity < n)
+    return fail(FS_ERROR_BUFFER_TOO_SMALL, "fs_modal_coordinates: the body has " +
+                                               std::to_string(n) + " modes, the buffer holds " +
+                                               std::to_string(capacity));
+  return FS_OK;
+}
+
+int fs_evaluate_outputs(fs_data* d) {
+  if (!d) return static_cast<int>(fsx::StepStatus::invalid_input);
+  return static_cast<int>(fsx::evaluate_outputs(*d->model, d->data));
+}
+
+double fs_output_value(const fs_data* d, int output) {
+  if (!d || output < 0 || output >= d->model->num_outputs()) return kNaN;
+  return fsx::output_value(d->data, fsx::OutputId{output});
+}
+
+double fs_meter_damage(fs_data* d, int meter) {
+  if (!d || !in_range(meter, d->model->meters().size())) return kNaN;
+  return fsx::meter_damage(d->data, fsx::MeterId{meter});
 }
 
 int fs_linearized_frequencies(fs_data* d, double* hz, int capacity, int* count) {

@@ -1,8 +1,8 @@
 // The accuracy-versus-time study: for each approximation a user of flexstress can choose, the
 // error it causes in the crane's hot-spot stress history and fatigue damage against the time it
 // costs. A reference run (finest of everything), per knob runs that change that knob alone, and
-// a few combined fast configurations. Knobs compiled at only some mode counts (float, effect
-// lists) vary around 16 modes and h = 1 ms on the reference sub-model. Writes
+// a few combined fast configurations. The float, effect, recovery and Newton knobs vary around
+// 16 modes and h = 1 ms on the reference sub-model. Writes
 // <output>/accuracy_vs_time.csv, accuracy_vs_time.md, histories.csv and, with gnuplot, the
 // plots of bench/accuracy_vs_time/plot.gp. docs/accuracy-vs-time.md explains the results.
 #include <algorithm>
@@ -77,8 +77,8 @@ Knobs paper() {
   return k;
 }
 
-// The base of the knobs compiled only there (float, effect lists, recovery, Newton): the
-// reference with 16 modes and h = 1 ms.
+// The base of the float, effect, recovery and Newton knobs: the reference with 16 modes and
+// h = 1 ms.
 Knobs base16() {
   Knobs k = reference();
   k.name = "16 modes, h 1 ms";
@@ -156,7 +156,7 @@ std::vector<Knobs> configurations() {
     add(k, "effects", "no sub-model inertia");
   }
   runs.push_back(paper());
-  // One knob at a time from the 16-mode, 1 ms base (compiled there only).
+  // One knob at a time from the 16-mode, 1 ms base.
   const Knobs base = base16();
   runs.push_back(base);
   {

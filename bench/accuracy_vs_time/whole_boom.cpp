@@ -7,7 +7,7 @@
 // boom's loads are taken from the simulated state: gravity and the d'Alembert force of every
 // material point (frame acceleration, centrifugal, Coriolis and elastic acceleration from the
 // modal coordinates), the payload's weight and inertia, and the rod's force at B (the spherical
-// joint's multiplier). A brick model of the whole boom (the same RHS and welded rib, meshed by
+// joint's reaction). A brick model of the whole boom (the same RHS and welded rib, meshed by
 // the same generator at the same density, so the detail's mesh is the sub-model's) is clamped at
 // A and solved for them quasi-statically; its hot spot (the same read-out rows) is compared with
 // the sub-model's at the same instant, and with that of the same sub-model driven at its x1 end by
@@ -30,19 +30,17 @@
 #include <string>
 #include <vector>
 
-#include <flexstress/dynamics/implicit_integrator.hpp>
 #include <flexstress/stress/sub_model_inertia.hpp>
 
-#include "../../examples/crane/crane_scene.hpp"
+#include "../../examples/crane/crane_model.hpp"
 
 using namespace flexstress;
 
 namespace {
 
 constexpr int kModes = 24;
-using CraneT = crane::Crane<kModes>;
-using SceneT = CraneT::SceneT;
-using State = SceneT::State;
+using CraneT = crane::Crane;
+using State = Data<double>;
 using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point t0) {
@@ -83,6 +81,7 @@ struct SectionModes {
 struct Instant {
   double t = 0;
   State state;
+  VectorXd p_ddot;  ///< the boom's modal accelerations (central difference of its rates)
   double hot_sub = 0, hot_sub_inertia = 0, nominal_sub = 0;
   double hot_forced = 0;  ///< the force-driven sub-model's, with its inertia
 };
@@ -96,9 +95,11 @@ struct CraneWithInertia {
 Result<CraneWithInertia> make_crane_with_inertia(const crane::CraneSpec& spec,
                                                  const std::vector<double>& t,
                                                  const std::vector<double>& ds) {
-  auto made = crane::make_crane<kModes>(spec, t, ds);
+  crane::CraneOptions options;
+  options.modes = kModes;
+  auto made = crane::make_crane(spec, options, t, ds);
   if (!made) return made.error();
-  auto inertia = stress::SubModelInertia<double>::build(*made->sub, made->outputs);
+  auto inertia = stress::SubModelInertia<double>::build(*made->detail.sub, made->detail.outputs);
   if (!inertia) return inertia.error();
   return CraneWithInertia{std::move(*made), std::move(*inertia)};
 }
@@ -197,46 +198,59 @@ int main(int argc, char** argv) {
   CraneT& crf = made_force->crane;
   const auto& inertia_force = made_force->inertia;
   std::printf("cranes (24 modes, sub-model density %g, %zu bricks): %.0f ms\n", opt.density,
-              cr.sub->mesh().hexes().size(), ms_since(t0));
-  Eigen::VectorXd y_force(crf.fused->num_outputs());
+              cr.detail.sub->mesh().hexes().size(), ms_since(t0));
+  const Model<double>& model = cr.model;
+  const BodyId boom_body = cr.boom_body;
+  const Index hot_row = cr.detail.hot_spot, nominal_row = cr.detail.nominal;
+  Eigen::VectorXd y_force(crf.detail.fused.rows());
 
   // The cycle, twice (deterministic): the first run finds the hot spot's extremes, the second
   // keeps the states at the chosen instants.
-  ImplicitIntegrator<SceneT>::Settings set;
-  set.step = 1e-4;
-  set.acceleration_tolerance = 1e-6;
-  const long steps = std::lround((tt.back() - tt.front()) / set.step);
-  Eigen::VectorXd y(cr.fused->num_outputs());
+  const double step_size = 1e-4;
+  const long steps = std::lround((tt.back() - tt.front()) / step_size);
+  Eigen::VectorXd y(cr.detail.fused.rows());
   auto sub_outputs = [&](const State& s, double& hot, double& hot_inertia, double& nominal) {
-    cr.fused->evaluate(s.coordinates<0>().p, y);
-    hot = y(cr.hot_spot_row) / 1e6;
-    nominal = y(cr.nominal_row) / 1e6;
+    y.noalias() = cr.detail.fused * modal_coordinates(model, s, boom_body);
+    hot = y(hot_row) / 1e6;
+    nominal = y(nominal_row) / 1e6;
     hot_inertia =
         hot +
-        inertia.rows().row(cr.hot_spot_row).dot(crane::boom_inertia_coordinates(cr.scene, s)) / 1e6;
+        inertia.rows().row(hot_row).dot(body_inertia_coordinates(model, s, boom_body.index)) / 1e6;
   };
   std::vector<long> keep;
   for (long k = 0; k <= steps; k += 5000) keep.push_back(k);  // every 0.5 s
   std::vector<double> history_t, history_hot;
   for (int pass = 0; pass < 2; ++pass) {
     State s = cr.initial;
-    ImplicitIntegrator<SceneT> integ(cr.scene, set);
-    if (Status st = integ.initialize(s); !st) {
+    s.settings.step = step_size;
+    s.settings.acceleration_tolerance = 1e-6;
+    if (Status st = initialize(model, s); !st) {
       std::fprintf(stderr, "whole_boom_reference: %s\n", st.error().what().c_str());
       return 1;
     }
     long arg_max = 0, arg_min = 0;
     double hot_max = -1e300, hot_min = 1e300;
     std::vector<Instant> instants;
+    // The library reads out modal velocities but not accelerations: p_ddot of a kept instant by
+    // central differences of p_dot over its neighbouring steps (one-sided at the ends).
+    VectorXd rates_before, pending_from;
+    long pending_from_k = -1;  // >= 0: the last kept instant waits for the next step's rates
+    const auto finish_pending = [&](long k) {
+      instants.back().p_ddot = (modal_velocities(model, s, boom_body) - pending_from) /
+                               (double(k - pending_from_k) * step_size);
+      pending_from_k = -1;
+    };
     t0 = Clock::now();
     for (long k = 0; k <= steps; ++k) {
+      rates_before = modal_velocities(model, s, boom_body);  // step k - 1's (k = 0: its own)
       if (k > 0) {
-        const StepStatus st = integ.step(s);
+        const StepStatus st = step(model, s);
         if (st != StepStatus::ok && st != StepStatus::constraint_violation) {
           std::fprintf(stderr, "whole_boom_reference: step %ld: %s\n", k, to_string(st));
           return 1;
         }
       }
+      if (pending_from_k >= 0) finish_pending(k);
       Instant in;
       sub_outputs(s, in.hot_sub, in.hot_sub_inertia, in.nominal_sub);
       if (pass == 0) {
@@ -247,17 +261,20 @@ int main(int argc, char** argv) {
           history_hot.push_back(in.hot_sub_inertia);
         }
       } else if (std::binary_search(keep.begin(), keep.end(), k)) {
-        crf.fused->evaluate(s.coordinates<0>().p, y_force);
-        in.hot_forced =
-            (y_force(crf.hot_spot_row) + inertia_force.rows()
-                                             .row(crf.hot_spot_row)
-                                             .dot(crane::boom_inertia_coordinates(cr.scene, s))) /
-            1e6;
+        y_force.noalias() = crf.detail.fused * modal_coordinates(model, s, boom_body);
+        in.hot_forced = (y_force(crf.detail.hot_spot) +
+                         inertia_force.rows()
+                             .row(crf.detail.hot_spot)
+                             .dot(body_inertia_coordinates(model, s, boom_body.index))) /
+                        1e6;
         in.t = double(s.t);
         in.state = s;
         instants.push_back(in);
+        pending_from = rates_before;
+        pending_from_k = k > 0 ? k - 1 : k;
       }
     }
+    if (pending_from_k >= 0) finish_pending(steps);  // the last step: backward
     std::printf("cycle pass %d: %ld steps in %.0f ms\n", pass + 1, steps, ms_since(t0));
     if (pass == 0) {
       keep.push_back(arg_max);
@@ -289,7 +306,7 @@ int main(int argc, char** argv) {
     const Vector3d payload_point(spec.payload_x, 0, 0);
     const Index node_payload = mesh.add_node(payload_point);
     mesh.add_rigid_link(node_payload, whole->section_nodes(spec.payload_x));
-    auto modes = SectionModes::build(cr.boom, {&whole->mesh, &cr.detail.mesh});
+    auto modes = SectionModes::build(cr.boom, {&whole->mesh, &cr.detail.mesh.mesh});
     if (!modes) {
       std::fprintf(stderr, "whole_boom_reference: %s\n", modes.error().what().c_str());
       return 1;
@@ -310,16 +327,21 @@ int main(int argc, char** argv) {
     const auto& p_spec = spec;
     MatrixXd loads = MatrixXd::Zero(dofs.size(), static_cast<Index>(instants.size()));
     std::vector<double> force_residual, moment_residual;
-    constexpr int i_rev = SceneT::joint_offset[0], i_sph = SceneT::joint_offset[2];
+    // Marker i of B (on the boom): the axes its reaction is given in.
+    const MarkerId b_on_boom{model.joint(cr.joint_b).marker_i};
     for (std::size_t k = 0; k < instants.size(); ++k) {
       const State& s = instants[k].state;
-      const Matrix3d a = rotation_matrix(s.coordinates<0>().theta);
-      const Vector3d g = a.transpose() * cr.scene.gravity;
-      const Vector3d a_o = a.transpose() * s.v_dot.head<3>();
-      const Vector3d w = s.v.segment<3>(3), alpha = s.v_dot.segment<3>(3);
-      const VectorXd u = modes->phi * s.coordinates<0>().p;
-      const VectorXd u_dot = modes->phi * s.v.segment<kModes>(6);
-      const VectorXd u_ddot = modes->phi * s.v_dot.segment<kModes>(6);
+      const Matrix3d a = rotation_matrix<double>(body_orientation(model, s, boom_body));
+      const Vector3d g = a.transpose() * model.gravity();
+      // Frame acceleration less gravity and angular acceleration (body frame).
+      const Eigen::Matrix<double, 12, 1> inertia_c =
+          body_inertia_coordinates(model, s, boom_body.index);
+      const Vector3d a_o = inertia_c.head<3>() + g;
+      const Vector3d w = body_angular_velocity(model, s, boom_body),
+                     alpha = inertia_c.segment<3>(3);
+      const VectorXd u = modes->phi * modal_coordinates(model, s, boom_body);
+      const VectorXd u_dot = modes->phi * modal_velocities(model, s, boom_body);
+      const VectorXd u_ddot = modes->phi * instants[k].p_ddot;
       // a = a_O + alpha x r + w x (w x r) + 2 w x u_dot + u_ddot, r = r0 + u (deformed point).
       auto acceleration = [&](const Vector3d& r0) -> Vector3d {
         const Vector3d r = r0 + modes->at(r0, u);
@@ -333,14 +355,17 @@ int main(int argc, char** argv) {
       }
       VectorXd f = boom->model().mass_all * field;
       const Vector3d payload_force = p_spec.payload_mass * (g - acceleration(payload_point));
-      const Vector3d rod_force = a.transpose() * s.lambda.segment<3>(i_sph);  // on the boom
+      // The rod's force on the boom: minus the joint's force on the rod (its body j).
+      const Vector3d rod_force = -(a.transpose() * (marker_frame(model, s, b_on_boom).axes *
+                                                    joint_reaction(model, s, cr.joint_b).force));
       for (int c = 0; c < 3; ++c) {
         f(dofs.dof(node_payload, c)) += payload_force(c);
         f(dofs.dof(node_b, c)) += rod_force(c);
       }
       loads.col(static_cast<Index>(k)) = f;
-      // Balance with the hinge force of the simulation (-lambda on the boom, marker j).
-      Vector3d total = a.transpose() * -s.lambda.segment<3>(i_rev);
+      // Balance with the hinge force of the simulation (on the boom, marker j; marker i on the
+      // support has the global axes).
+      Vector3d total = a.transpose() * joint_reaction(model, s, cr.joint_a).force;
       double moment_z = 0;
       for (Index n = 0; n < boom->mesh().num_nodes(); ++n) {
         if (dofs.num_node_dofs(n) == 0) continue;
@@ -354,7 +379,7 @@ int main(int argc, char** argv) {
     }
     MatrixXd response(dofs.size(), loads.cols());
     for (Index k = 0; k < loads.cols(); ++k) response.col(k) = boom->load_response(loads.col(k));
-    auto rows = cr.outputs.rows(*boom, response);
+    auto rows = cr.detail.outputs.rows(*boom, response);
     if (!rows) {
       std::fprintf(stderr, "whole_boom_reference: %s\n", rows.error().what().c_str());
       return 1;
@@ -372,8 +397,8 @@ int main(int argc, char** argv) {
     double max_err = 0, max_err_inertia = 0, sum2 = 0, sum2_inertia = 0, max_nominal = 0;
     double max_force = 0, max_moment = 0, max_err_forced = 0, sum2_forced = 0;
     for (std::size_t k = 0; k < instants.size(); ++k) {
-      const double whole_hot = (*rows)(cr.hot_spot_row, static_cast<Index>(k)) / 1e6;
-      const double whole_nominal = (*rows)(cr.nominal_row, static_cast<Index>(k)) / 1e6;
+      const double whole_hot = (*rows)(hot_row, static_cast<Index>(k)) / 1e6;
+      const double whole_nominal = (*rows)(nominal_row, static_cast<Index>(k)) / 1e6;
       const Instant& in = instants[k];
       const double forced_hot = in.hot_forced;
       char line[320];

@@ -16,6 +16,7 @@
 #include <flexstress/fatigue/sn_curve.hpp>
 #include <flexstress/fe/rhs_attachment_mesh.hpp>
 #include <flexstress/model/all.hpp>
+#include <flexstress/reduction/modal_geometric_stiffness.hpp>
 #include <flexstress/stress/host_point.hpp>
 #include <flexstress/stress/section_force_modes.hpp>
 #include <flexstress/stress/stress_outputs.hpp>
@@ -33,19 +34,27 @@ struct CraneOptions {
   int modes = 10;             ///< boom deformation modes (6 static + fixed-interface ones)
   bool hydraulic = false;     ///< the valve-driven cylinder instead of the prescribed stroke
   bool with_inertia = false;  ///< the detail's own weight and inertia in its stresses
+  // What the model evaluates (docs/model.md); the accuracy study and the benchmarks vary them.
+  bool gravity = true;
+  bool modal_damping = true;  ///< the boom's damping ratios from its reduction; off: none
+  /// Off: the quadratic velocity terms left out, as an approximation.
+  bool quadratic_velocity = true;
+  /// K_G of the boom under its inertial and gravity loads, A and B clamped for the load cases.
+  bool geometric_stiffening = false;
 };
 
 /// The damage meter of every crane run: IIW hot-spot FAT 100, slope 3 to the knee at 1e7 and
 /// Haibach (5) beyond, as IIW recommends for variable amplitude; streaming rainflow on 128
 /// classes over +-400 MPa, fed in MPa.
-inline Result<DamageMeter<double>> make_damage_meter() {
-  auto curve = fatigue::iiw_normal_curve(100.0, fatigue::IiwBeyondKnee::haibach);
+template <class Scalar = double>
+Result<DamageMeter<Scalar>> make_damage_meter() {
+  auto curve = fatigue::iiw_normal_curve(Scalar(100), fatigue::IiwBeyondKnee::haibach);
   if (!curve) return curve.error();
-  auto model = fatigue::DamageModel<double>::create(*curve);
+  auto model = fatigue::DamageModel<Scalar>::create(*curve);
   if (!model) return model.error();
-  auto grid = fatigue::ClassGrid<double>::create(-400.0, 400.0, 128);
+  auto grid = fatigue::ClassGrid<Scalar>::create(Scalar(-400), Scalar(400), 128);
   if (!grid) return grid.error();
-  return DamageMeter<double>::create(*grid, 0, *model);
+  return DamageMeter<Scalar>::create(*grid, 0, *model);
 }
 
 /// The welded detail D: its sub-model, the read-outs on it and their fused rows in the boom's
@@ -62,15 +71,17 @@ struct Detail {
 };
 
 /// The crane: its model, the state it starts from (static equilibrium at the cycle's start) and
-/// the handles a run reads.
-struct Crane {
+/// the handles a run reads. Scalar: the model's (float for the accuracy study's float runs).
+template <class Scalar>
+struct BasicCrane {
   CraneSpec spec;
   CraneOptions options;
   Boom boom;
   Detail detail;
-  Model<double> model;
-  Data<double> initial;
+  Model<Scalar> model;
+  Data<Scalar> initial;
   BodyId boom_body, cylinder, rod;
+  JointId joint_a, joint_b;    ///< the boom's hinge on the support and the rod's joint on it
   JointId stroke_driver;       ///< the prescribed stroke (invalid with the hydraulic drive)
   ForceId hydraulic_cylinder;  ///< the valve-driven cylinder (hydraulic drive only)
   OutputId outputs;            ///< the first of the detail's outputs, in Detail's order
@@ -80,54 +91,70 @@ struct Crane {
 
   OutputId output(Index row) const { return OutputId{outputs.index + static_cast<int>(row)}; }
 };
+using Crane = BasicCrane<double>;
 
-namespace detail {
+namespace assembly {
 
 /// Handles of the parts both drives share.
 struct Parts {
   BodyId boom, cylinder, rod;
+  JointId a, b;
   MarkerId cylinder_origin, rod_origin;
 };
 
 /// Bodies, markers and the four joints of the crane (A, C, B and the cylinder's slide), in the
-/// order the step's matrices follow: boom, cylinder, rod.
-inline Parts add_crane_parts(ModelBuilder<double>& b, const CraneSpec& spec, const Boom& boom,
-                             int modes) {
-  Parts p;
-  p.boom = b.add_flexible_body("boom", boom.data, modes);
+/// order the step's matrices follow: boom, cylinder, rod; and the effects `o` asks for.
+template <class Scalar>
+Status add_crane_parts(ModelBuilder<Scalar>& b, const CraneSpec& spec, const Boom& boom,
+                       const CraneOptions& o, Parts& p) {
+  using V3 = Vec3<Scalar>;
+  using M3 = Mat3<Scalar>;
+  p.boom = b.add_flexible_body("boom", boom.data, o.modes);
+  if (!o.modal_damping) b.set_damping_ratio(p.boom, Scalar(0));
+  if (o.geometric_stiffening) {
+    // The boom's inertial loads leave it through A and B: both clamped for the stress states
+    // (docs/crane.md).
+    auto g = reduction::modal_geometric_stiffness(boom.mesh, boom.data,
+                                                  reduction::clamp_interface_nodes(boom.data));
+    if (!g) return g.error();
+    b.add_geometric_stiffening(p.boom, *g);
+  }
   // Cylinder and rod: slender rigid bodies, frames with z along C -> B, origins at C and B;
   // centres of mass half a length inside.
   const double lc = spec.cylinder_length, lr = spec.rod_length;
   const double ic = spec.cylinder_mass * lc * lc / 12, ir = spec.rod_mass * lr * lr / 12;
-  p.cylinder = b.add_rigid_body("cylinder", spec.cylinder_mass, Vector3d(0, 0, lc / 2),
-                                Vector3d(ic, ic, 1e-3 * ic).asDiagonal());
-  p.rod = b.add_rigid_body("rod", spec.rod_mass, Vector3d(0, 0, -lr / 2),
-                           Vector3d(ir, ir, 1e-3 * ir).asDiagonal());
+  p.cylinder =
+      b.add_rigid_body("cylinder", Scalar(spec.cylinder_mass), V3(0, 0, Scalar(lc / 2)),
+                       Vector3d(ic, ic, 1e-3 * ic).asDiagonal().toDenseMatrix().cast<Scalar>());
+  p.rod = b.add_rigid_body("rod", Scalar(spec.rod_mass), V3(0, 0, Scalar(-lr / 2)),
+                           Vector3d(ir, ir, 1e-3 * ir).asDiagonal().toDenseMatrix().cast<Scalar>());
   const Vector3d cb = (spec.b - spec.c).normalized();
   const Matrix3d frame = frame_with_z_axis<double>(cb);
-  b.set_initial_pose(p.cylinder, spec.c, from_rotation_matrix<double>(frame));
-  b.set_initial_pose(p.rod, spec.b, from_rotation_matrix<double>(frame));
+  const EulerParameters<Scalar> along_cb = from_rotation_matrix<double>(frame).cast<Scalar>();
+  b.set_initial_pose(p.cylinder, spec.c.cast<Scalar>(), along_cb);
+  b.set_initial_pose(p.rod, spec.b.cast<Scalar>(), along_cb);
   // A: boom on the support (revolute about z). C: cylinder on the support (universal: the
   // revolute about z plus the in-plane cross axis, so the loop is not over-constrained). B: rod
   // on the boom (spherical), 0.125 m below the boom node at 0.32 m.
-  const Matrix3d planar = Matrix3d::Identity();
-  const Matrix3d cross =
-      frame.transpose() * frame_with_z_axis<double>(Vector3d(cb.y(), -cb.x(), 0));
-  b.add_joint("A", JointKind::revolute,
-              b.add_marker("A on support", b.ground(), -1, spec.a, planar),
-              b.add_marker("A on boom", p.boom, boom.node_a, Vector3d::Zero(), planar));
+  const M3 planar = M3::Identity();
+  const M3 cross =
+      (frame.transpose() * frame_with_z_axis<double>(Vector3d(cb.y(), -cb.x(), 0))).cast<Scalar>();
+  p.a = b.add_joint("A", JointKind::revolute,
+                    b.add_marker("A on support", b.ground(), -1, spec.a.cast<Scalar>(), planar),
+                    b.add_marker("A on boom", p.boom, boom.node_a, V3::Zero(), planar));
   b.add_joint("C", JointKind::universal,
-              b.add_marker("C on support", b.ground(), -1, spec.c, planar),
-              b.add_marker("C on cylinder", p.cylinder, -1, Vector3d::Zero(), cross));
-  b.add_joint(
-      "B", JointKind::spherical,
-      b.add_marker("B on boom", p.boom, boom.node_b, spec.b - Vector3d(spec.b_node_x, 0, 0)),
-      b.add_marker("B on rod", p.rod, -1));
+              b.add_marker("C on support", b.ground(), -1, spec.c.cast<Scalar>(), planar),
+              b.add_marker("C on cylinder", p.cylinder, -1, V3::Zero(), cross));
+  p.b = b.add_joint("B", JointKind::spherical,
+                    b.add_marker("B on boom", p.boom, boom.node_b,
+                                 V3((spec.b - Vector3d(spec.b_node_x, 0, 0)).cast<Scalar>())),
+                    b.add_marker("B on rod", p.rod, -1));
   p.cylinder_origin = b.add_marker("cylinder axis", p.cylinder, -1);
   p.rod_origin = b.add_marker("rod axis", p.rod, -1);
   b.add_joint("slide", JointKind::prismatic, p.cylinder_origin, p.rod_origin);
-  b.set_gravity(Vector3d(0, -9.81, 0));
-  return p;
+  if (o.gravity) b.set_gravity(V3(0, Scalar(-9.81), 0));
+  if (!o.quadratic_velocity) b.approximate_without_quadratic_velocity();
+  return Status::success();
 }
 
 /// The detail's sub-model, read-outs and fused rows (docs/crane.md).
@@ -220,29 +247,31 @@ inline Result<Detail> make_detail(const CraneSpec& spec, const Boom& boom, int m
 }
 
 /// The detail's outputs on the boom, its hot spot's damage meter and (optionally) its inertia.
-inline Status add_detail_outputs(ModelBuilder<double>& b, const Detail& d, BodyId boom,
-                                 bool with_inertia, OutputId& first, MeterId& meter) {
+template <class Scalar>
+Status add_detail_outputs(ModelBuilder<Scalar>& b, const Detail& d, BodyId boom, bool with_inertia,
+                          OutputId& first, MeterId& meter) {
   first = b.add_stress_outputs("detail D", boom, d.fused, d.names);
   if (with_inertia) {
     auto inertia = stress::SubModelInertia<>::build(*d.sub, d.outputs);
     if (!inertia) return inertia.error();
     b.add_output_inertia(first, inertia->rows());
   }
-  auto empty = make_damage_meter();
+  auto empty = make_damage_meter<Scalar>();
   if (!empty) return empty.error();
-  meter =
-      b.add_damage_meter("hot spot (MPa)", OutputId{first.index + int(d.hot_spot)}, *empty, 1e-6);
+  meter = b.add_damage_meter("hot spot (MPa)", OutputId{first.index + int(d.hot_spot)}, *empty,
+                             Scalar(1e-6));
   return Status::success();
 }
 
-}  // namespace detail
+}  // namespace assembly
 
 /// Builds the crane with the work cycle (t, stroke offset): precomputes the detail, puts the
 /// crane in static equilibrium at t = 0. With the hydraulic drive the stroke cycle becomes the
 /// valve's command cycle (below). Fails with the first error.
-inline Result<Crane> make_crane(const CraneSpec& spec, const CraneOptions& options,
-                                const std::vector<double>& t, const std::vector<double>& ds) {
-  Crane cr;
+template <class Scalar = double>
+Result<BasicCrane<Scalar>> make_crane(const CraneSpec& spec, const CraneOptions& options,
+                                      const std::vector<double>& t, const std::vector<double>& ds) {
+  BasicCrane<Scalar> cr;
   cr.spec = spec;
   cr.options = options;
   if (options.modes < 1 || options.modes > max_runtime_modes)
@@ -251,7 +280,7 @@ inline Result<Crane> make_crane(const CraneSpec& spec, const CraneOptions& optio
   auto boom = make_boom(spec, options.modes);
   if (!boom) return boom.error();
   cr.boom = std::move(*boom);
-  auto detail = detail::make_detail(spec, cr.boom, options.modes);
+  auto detail = assembly::make_detail(spec, cr.boom, options.modes);
   if (!detail) return detail.error();
   cr.detail = std::move(*detail);
   cr.initial_length = (spec.b - spec.c).norm();
@@ -263,26 +292,30 @@ inline Result<Crane> make_crane(const CraneSpec& spec, const CraneOptions& optio
   const auto& ds_drive = options.hydraulic ? ds_held : ds;
   std::vector<double> stroke(ds_drive);
   for (double& v : stroke) v += cr.initial_length;
-  auto law = TableLaw<double>::create(t_drive, stroke);
+  auto law = TableLaw<Scalar>::create(t_drive, stroke);
   if (!law) return law.error();
-  ModelBuilder<double> driven;
-  const detail::Parts parts = detail::add_crane_parts(driven, spec, cr.boom, options.modes);
+  ModelBuilder<Scalar> driven;
+  assembly::Parts parts;
+  if (Status st = assembly::add_crane_parts(driven, spec, cr.boom, options, parts); !st)
+    return st.error();
   const JointId driver =
       driven.add_driver("stroke", JointKind::prismatic_driver, parts.cylinder_origin,
-                        parts.rod_origin, MotionLaw<double>::from_table(std::move(*law)));
+                        parts.rod_origin, MotionLaw<Scalar>::from_table(std::move(*law)));
   OutputId first;
   MeterId meter;
-  if (Status st = detail::add_detail_outputs(driven, cr.detail, parts.boom, options.with_inertia,
-                                             first, meter);
+  if (Status st = assembly::add_detail_outputs(driven, cr.detail, parts.boom, options.with_inertia,
+                                               first, meter);
       !st)
     return st.error();
   auto driven_model = driven.finalize();
   if (!driven_model) return driven_model.error();
-  Data<double> at_rest(*driven_model);
+  Data<Scalar> at_rest(*driven_model);
   if (Status st = solve_static_equilibrium(*driven_model, at_rest); !st) return st.error();
   cr.boom_body = parts.boom;
   cr.cylinder = parts.cylinder;
   cr.rod = parts.rod;
+  cr.joint_a = parts.a;
+  cr.joint_b = parts.b;
   cr.outputs = first;
   cr.hot_spot_meter = meter;
   if (!options.hydraulic) {
@@ -300,9 +333,8 @@ inline Result<Crane> make_crane(const CraneSpec& spec, const CraneOptions& optio
   const double pi = 3.14159265358979323846, l0 = cr.initial_length;
   const double a1 = pi / 4 * hs.bore * hs.bore, a2 = a1 - pi / 4 * hs.rod * hs.rod;
   const double gain = hs.rated_flow / std::sqrt(hs.rated_drop);
-  // The driver's reaction: M v_dot = Q - B^T lambda with the driver's row d phi / d r_rod = n
-  // (the cylinder axis), so the cylinder pushes the rod out with F = -lambda.
-  const double force = -at_rest.lambda(driven_model->joint(driver).row);
+  // The force the driver holds the rod out with.
+  const double force = double(driver_effort(*driven_model, at_rest, driver));
   const double p2 = hs.rod_side_pressure, p1 = (force + p2 * a2) / a1;
   if (!(p1 > hs.tank && p1 < hs.supply))
     return make_error(ErrorCode::invalid_argument, "hydraulic crane: holding the load takes ",
@@ -327,45 +359,50 @@ inline Result<Crane> make_crane(const CraneSpec& spec, const CraneOptions& optio
     tc.push_back(tk);
     uc.push_back(std::clamp(rate * std::sqrt(cubes / margin) / gain, -1.0, 1.0));
   }
-  auto command = TableLaw<double>::create(tc, uc);
+  auto command = TableLaw<Scalar>::create(tc, uc);
   if (!command) return command.error();
-  HydraulicParams<double> hp;
-  hp.bore_area = a1;
-  hp.annulus_area = a2;
-  hp.stroke = hs.stroke;
-  hp.length_retracted = l0 - hs.initial_position;
-  hp.dead_volume_cap = hp.dead_volume_rod = hs.dead_volume;
-  hp.bulk_modulus = hs.bulk_modulus;
-  hp.supply_pressure = hs.supply;
-  hp.tank_pressure = hs.tank;
-  hp.flow_gain = gain;
-  ModelBuilder<double> valved;
-  const detail::Parts same = detail::add_crane_parts(valved, spec, cr.boom, options.modes);
-  cr.hydraulic_cylinder =
-      valved.add_hydraulic_cylinder("cylinder", same.cylinder_origin, same.rod_origin, hp,
-                                    MotionLaw<double>::from_table(std::move(*command)), p1, p2);
-  if (Status st = detail::add_detail_outputs(valved, cr.detail, same.boom, options.with_inertia,
-                                             first, meter);
+  HydraulicParams<Scalar> hp;
+  hp.bore_area = Scalar(a1);
+  hp.annulus_area = Scalar(a2);
+  hp.stroke = Scalar(hs.stroke);
+  hp.length_retracted = Scalar(l0 - hs.initial_position);
+  hp.dead_volume_cap = hp.dead_volume_rod = Scalar(hs.dead_volume);
+  hp.bulk_modulus = Scalar(hs.bulk_modulus);
+  hp.supply_pressure = Scalar(hs.supply);
+  hp.tank_pressure = Scalar(hs.tank);
+  hp.flow_gain = Scalar(gain);
+  ModelBuilder<Scalar> valved;
+  assembly::Parts same;
+  if (Status st = assembly::add_crane_parts(valved, spec, cr.boom, options, same); !st)
+    return st.error();
+  cr.hydraulic_cylinder = valved.add_hydraulic_cylinder(
+      "cylinder", same.cylinder_origin, same.rod_origin, hp,
+      MotionLaw<Scalar>::from_table(std::move(*command)), Scalar(p1), Scalar(p2));
+  if (Status st = assembly::add_detail_outputs(valved, cr.detail, same.boom, options.with_inertia,
+                                               first, meter);
       !st)
     return st.error();
   auto valved_model = valved.finalize();
   if (!valved_model) return valved_model.error();
   cr.model = std::move(*valved_model);
-  cr.initial = Data<double>(cr.model);
+  cr.initial = Data<Scalar>(cr.model);
   cr.initial.q = at_rest.q;  // the same bodies in the same order
   cr.initial.t = at_rest.t;
   return cr;
 }
 
 /// Boom angle about z (rad) from the boom's orientation.
-inline double boom_angle(const Crane& cr, const Data<double>& d) {
-  const Matrix3d r = rotation_matrix<double>(body_orientation(cr.model, d, cr.boom_body));
-  return std::atan2(r(1, 0), r(0, 0));
+template <class Scalar>
+double boom_angle(const BasicCrane<Scalar>& cr, const Data<Scalar>& d) {
+  const Mat3<Scalar> r = rotation_matrix<Scalar>(body_orientation(cr.model, d, cr.boom_body));
+  return std::atan2(double(r(1, 0)), double(r(0, 0)));
 }
 
 /// The stroke as the bodies have it (cylinder origin at C, rod origin at B).
-inline double stroke(const Crane& cr, const Data<double>& d) {
-  return (body_position(cr.model, d, cr.rod) - body_position(cr.model, d, cr.cylinder)).norm() -
+template <class Scalar>
+double stroke(const BasicCrane<Scalar>& cr, const Data<Scalar>& d) {
+  return double((body_position(cr.model, d, cr.rod) - body_position(cr.model, d, cr.cylinder))
+                    .norm()) -
          cr.initial_length;
 }
 

@@ -154,6 +154,24 @@ int fs_builder_add_driver(fs_model_builder* b, const char* name, int kind, int m
 int fs_builder_add_spring_damper(fs_model_builder* b, const char* name, int marker_i,
                                  int marker_j, double stiffness, double damping,
                                  double rest_length, double preload);
+/* A force and moment at a marker on a body, computed each evaluation by the callback from the
+ * time and the marker's global position and velocity; it writes force[3] and moment[3]
+ * (global, zeroed before the call). Called from the thread stepping the data, inside the
+ * step: it must not block or longjmp. */
+typedef void (*fs_point_load_callback)(double t, const double* position, const double* velocity,
+                                       double* force, double* moment, void* user);
+int fs_builder_add_point_load(fs_model_builder* b, const char* name, int marker,
+                              fs_point_load_callback callback, void* user);
+/* Stress outputs of a flexible body: y = F p with F given row-major (num_outputs x the body's
+ * modes, e.g. a sub-model's fused rows). Returns the first output's handle; the others follow
+ * it. */
+int fs_builder_add_stress_outputs(fs_model_builder* b, const char* name, int body,
+                                  const double* rows, int num_outputs, int num_modes);
+/* A damage meter on an output: streaming rainflow on 128 classes over [lower, upper] of
+ * scale * output (e.g. 1e-6 for Pa to MPa), damage by the IIW curve of class fat (MPa at 2e6
+ * cycles, slope 3, Haibach slope 5 beyond the knee at 1e7). */
+int fs_builder_add_damage_meter(fs_model_builder* b, const char* name, int output, double fat,
+                                double lower, double upper, double scale);
 int fs_builder_add_input(fs_model_builder* b, const char* name);
 int fs_builder_set_gravity(fs_model_builder* b, const double gravity[3]);
 /* Integrator settings every data starts with: step (s), spectral radius at infinity in [0, 1]
@@ -204,6 +222,21 @@ double fs_time(const fs_data* d); /* s; NaN for a null data */
 int fs_set_input(fs_data* d, int input, double value, double rate, double acceleration);
 int fs_set_joint_active(fs_data* d, int joint, int active);
 int fs_set_law(fs_data* d, int joint, const fs_motion_law* law);
+/* Moves the joint's marker j onto marker i (origin and axes) in this data, so that switching
+ * the joint on holds the bodies where they are. */
+int fs_anchor_joint(fs_data* d, int joint);
+/* A body's velocity: its frame's linear velocity (global) and angular velocity (body axes). */
+int fs_set_body_velocity(fs_data* d, int body, const double velocity[3],
+                         const double omega_body[3]);
+
+/* ---- checkpoints ------------------------------------------------------------------------- */
+/* The whole data as bytes (state, joint switches, anchors, laws, inputs, integrator history,
+ * outputs and meters) with a description of its model. With buffer NULL only *size is set;
+ * FS_ERROR_BUFFER_TOO_SMALL if capacity is short (then *size says what is needed). */
+int fs_checkpoint_save(const fs_data* d, unsigned char* buffer, size_t capacity, size_t* size);
+/* Restores a checkpoint into d (a data of the same model: the error names the part that
+ * differs otherwise). A restored run continues bit for bit; on error d is unchanged. */
+int fs_checkpoint_restore(fs_data* d, const unsigned char* buffer, size_t size);
 
 /* ---- read-outs --------------------------------------------------------------------------- */
 int fs_body_position(const fs_data* d, int body, double position[3]);
@@ -226,6 +259,16 @@ typedef struct fs_statistics {
   long long steps, iterations, factorizations, over_budget;
 } fs_statistics;
 int fs_statistics_get(const fs_data* d, fs_statistics* out);
+
+/* A flexible body's modal coordinates: min(capacity, modes) of them to p, the count to *count
+ * (if not NULL); FS_ERROR_BUFFER_TOO_SMALL if some did not fit. */
+int fs_modal_coordinates(const fs_data* d, int body, double* p, int capacity, int* count);
+/* Evaluates every output of the data at its state and feeds the damage meters (once per
+ * step). Returns an fs_step_status. Allocates nothing. */
+int fs_evaluate_outputs(fs_data* d);
+double fs_output_value(const fs_data* d, int output); /* NaN for a bad handle */
+/* Damage so far of a meter, its open cycles closed as a repeating history. NaN if bad. */
+double fs_meter_damage(fs_data* d, int meter);
 
 /* Natural frequencies (Hz, ascending) of small vibrations about the data's state, which must be
  * an equilibrium (fs_solve_static_equilibrium). Writes min(capacity, count) of them to hz and

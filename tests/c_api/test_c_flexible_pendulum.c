@@ -1,11 +1,13 @@
 /* The C interface alone (flexstress/flexstress.h, C99): a flexible pendulum, a beam hinged at
  * one end read from a modal body file, against its full FE model (make_pendulum_files.cpp,
  * the FE kernel without reduction: an independent reference); its swing under gravity; the
- * drivers' laws; and the answers to mistakes (finalize errors, bad handles, null pointers).
+ * drivers' laws; outputs, damage meters, a point load and checkpoints; and the answers to
+ * mistakes (finalize errors, bad handles, null pointers).
  *
  *   test_c_flexible_pendulum <beam.fsmodal> <beam_reference.txt> */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <flexstress/flexstress.h>
@@ -148,6 +150,101 @@ static void check_swing(const char* modal_file, const reference* r) {
   printf("statistics: %lld steps, %.2f iterations/step, %lld factorizations\n", st.steps,
          (double)st.iterations / (double)st.steps, st.factorizations);
   fs_data_destroy(d);
+}
+
+/* A constant push along -y at the tip: its work must show up as kinetic and elastic energy. */
+static void push_down(double t, const double* position, const double* velocity, double* force,
+                      double* moment, void* user) {
+  (void)t, (void)position, (void)velocity, (void)moment;
+  force[1] = -*(const double*)user;
+}
+
+/* The beam hinged at its root, pushed at its tip by `push` newtons; returns the body. */
+static int add_pushed_beam(fs_model_builder* builder, const char* modal_file, const reference* r,
+                           const double* push) {
+  const int beam = fs_builder_add_flexible_body(builder, "beam", modal_file, 16);
+  const int pivot = fs_builder_add_marker(builder, "pivot", FS_GROUND, -1, NULL, NULL);
+  const int root = fs_builder_add_marker(builder, "root", beam, r->root_node, NULL, NULL);
+  const int tip = fs_builder_add_marker(builder, "tip", beam, r->tip_node, NULL, NULL);
+  CHECK(fs_builder_add_joint(builder, "hinge", FS_JOINT_REVOLUTE, pivot, root) >= 0);
+  CHECK(fs_builder_add_point_load(builder, "push", tip, push_down, (void*)push) >= 0);
+  return beam;
+}
+
+/* Outputs, damage meters, a point load and checkpoints in C: the swing without gravity, pushed
+ * at the tip, its outputs reading the first two modal coordinates; stopped at 0.2 s, saved,
+ * restored into a fresh data and continued, it must match the run that never stopped bit for
+ * bit. References: the outputs against the modal coordinates they select; the restored run
+ * against the uninterrupted one. */
+static void check_outputs_and_checkpoints(const char* modal_file, const reference* r) {
+  static const double push = 20.0; /* N */
+  double rows[2 * 16] = {0.0}, p[16], a[3], b[3];
+  fs_model_builder* builder = fs_builder_create();
+  fs_model* m = NULL;
+  fs_data *d, *resumed;
+  unsigned char* bytes = NULL;
+  size_t size = 0, too_small = 0;
+  int beam, first, meter, count = 0, i;
+  beam = add_pushed_beam(builder, modal_file, r, &push);
+  rows[0] = 1.0;      /* output 0: p_0 */
+  rows[16 + 1] = 2.0; /* output 1: 2 p_1 */
+  first = fs_builder_add_stress_outputs(builder, "modes", beam, rows, 2, 16);
+  meter = fs_builder_add_damage_meter(builder, "mode 0", first, 100.0, -1.0, 1.0, 1e3);
+  CHECK(first == 0 && meter == 0);
+  CHECK(fs_builder_add_stress_outputs(builder, "bad", beam, rows, 2, 15) >= 0);
+  CHECK(fs_builder_finalize(builder, &m) == FS_ERROR_SIZE_MISMATCH); /* 15 columns, 16 modes */
+  CHECK(strstr(fs_builder_error(builder), "outputs 'bad'") != NULL);
+  fs_builder_destroy(builder);
+  /* Again without the bad set. */
+  builder = fs_builder_create();
+  beam = add_pushed_beam(builder, modal_file, r, &push);
+  first = fs_builder_add_stress_outputs(builder, "modes", beam, rows, 2, 16);
+  meter = fs_builder_add_damage_meter(builder, "mode 0", first, 100.0, -1.0, 1.0, 1e3);
+  CHECK(fs_builder_set_integrator(builder, 1e-3, 0.9, 30, 0.0) == FS_OK);
+  CHECK(fs_builder_finalize(builder, &m) == FS_OK);
+  fs_builder_destroy(builder);
+  d = fs_data_create(m);
+  resumed = fs_data_create(m);
+  CHECK(fs_initialize(d) == FS_OK);
+  for (i = 0; i < 400; ++i) {
+    CHECK(fs_step(d) == FS_STEP_OK);
+    CHECK(fs_evaluate_outputs(d) == FS_STEP_OK);
+    if (i == 199) { /* at 0.2 s */
+      CHECK(fs_checkpoint_save(d, NULL, 0, &size) == FS_OK && size > 0);
+      CHECK(fs_checkpoint_save(d, (unsigned char*)p, sizeof p, &too_small) ==
+            FS_ERROR_BUFFER_TOO_SMALL);
+      bytes = (unsigned char*)malloc(size);
+      CHECK(bytes != NULL && fs_checkpoint_save(d, bytes, size, &size) == FS_OK);
+    }
+  }
+  /* The outputs read the modal coordinates they select. */
+  CHECK(fs_modal_coordinates(d, beam, p, 16, &count) == FS_OK && count == 16);
+  CHECK(fs_output_value(d, first) == p[0] && fs_output_value(d, first + 1) == 2.0 * p[1]);
+  CHECK(fabs(p[0]) > 0.0);                 /* the push bent the beam */
+  CHECK(fs_meter_damage(d, meter) >= 0.0); /* finite and not negative */
+  CHECK(isnan(fs_output_value(d, 7)) && isnan(fs_meter_damage(d, 3)));
+  /* Restored at 0.2 s and continued: the same state as the run that never stopped. */
+  CHECK(fs_checkpoint_restore(resumed, bytes, size) == FS_OK);
+  CHECK(fabs(fs_time(resumed) - 0.2) < 1e-12);
+  for (i = 200; i < 400; ++i) {
+    CHECK(fs_step(resumed) == FS_STEP_OK);
+    CHECK(fs_evaluate_outputs(resumed) == FS_STEP_OK);
+  }
+  CHECK(fs_body_position(d, beam, a) == FS_OK && fs_body_position(resumed, beam, b) == FS_OK);
+  CHECK(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
+  CHECK(fs_output_value(d, first) == fs_output_value(resumed, first));
+  CHECK(fs_meter_damage(d, meter) == fs_meter_damage(resumed, meter));
+  /* A damaged checkpoint is refused and leaves the data as it was. */
+  bytes[size / 2] ^= 0x10;
+  CHECK(fs_checkpoint_restore(resumed, bytes, size) == FS_ERROR_BAD_FILE_FORMAT);
+  CHECK(strstr(fs_last_error(), "checksum") != NULL);
+  CHECK(fs_body_position(resumed, beam, b) == FS_OK && a[0] == b[0]);
+  printf("outputs and checkpoints: p0 %.3e at 0.4 s, a checkpoint of %lu bytes\n", p[0],
+         (unsigned long)size);
+  free(bytes);
+  fs_data_destroy(resumed);
+  fs_data_destroy(d);
+  fs_model_destroy(m);
 }
 
 /* phi(t) = 0.5 t, written by a callback. */
@@ -311,6 +408,7 @@ int main(int argc, char** argv) {
   check_frequencies(argv[1], &r);
   check_swing(argv[1], &r);
   check_drivers();
+  check_outputs_and_checkpoints(argv[1], &r);
   check_errors(argv[1], &r);
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   else printf("all checks passed\n");

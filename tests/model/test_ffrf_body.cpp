@@ -19,7 +19,7 @@
 #include <flexstress/reduction/inertia_integrals.hpp>
 #include <flexstress/reduction/orthonormalize.hpp>
 
-#include "dynamics/fixtures.hpp"
+#include "support/beam_fixtures.hpp"
 
 namespace test_ffrf_body {
 

@@ -8,7 +8,7 @@
 #include <flexstress/fe/static_solver.hpp>
 #include <flexstress/model/all.hpp>
 
-#include "dynamics/fixtures.hpp"
+#include "support/beam_fixtures.hpp"
 
 namespace test_model_equilibrium {
 

@@ -10,7 +10,7 @@
 
 #include <flexstress/model/all.hpp>
 
-#include "dynamics/fixtures.hpp"
+#include "support/beam_fixtures.hpp"
 
 namespace test_model_flexible {
 

@@ -21,7 +21,7 @@
 #include <flexstress/stress/stress_outputs.hpp>
 #include <flexstress/stress/sub_model.hpp>
 
-#include "dynamics/fixtures.hpp"
+#include "support/beam_fixtures.hpp"
 #include "support/counting_new.hpp"
 
 namespace test_no_alloc {

@@ -13,7 +13,7 @@
 #include <flexstress/fe/beam_section.hpp>
 #include <flexstress/stress/deformed_shape.hpp>
 
-#include "dynamics/fixtures.hpp"
+#include "support/beam_fixtures.hpp"
 
 namespace test_deformed_shape {
 

@@ -11,7 +11,7 @@
 #include <flexstress/stress/modal_stress_modes.hpp>
 #include <flexstress/stress/sub_model.hpp>
 
-#include "dynamics/fixtures.hpp"
+#include "support/beam_fixtures.hpp"
 
 namespace test_modal_stress_modes {
 

@@ -3,7 +3,7 @@
 // on the thread count or on which thread ran which job: a parallel campaign equals the serial
 // one bit for bit.
 //
-// The intended use shares the immutable parts of a simulation (a scene description, modal
+// The intended use shares the immutable parts of a simulation (a Model, modal
 // body data, influence matrices) by const reference and gives each job its own mutable parts
 // (State, integrator, damage meter): flexstress keeps those apart (Model/Data split), and
 // nothing in the library keeps hidden mutable state in an object that is only read (the one

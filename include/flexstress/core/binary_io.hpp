@@ -1,6 +1,6 @@
 // Little-endian binary writing and bounds-checked reading, a checksum, and the sealed envelope
 // (magic, version, byte order, signature, size, checksum): what the versioned file formats
-// (modal body files, scene checkpoints, damage-meter checkpoints) share.
+// (modal body files, model checkpoints, damage-meter checkpoints) share.
 #pragma once
 
 #include <cstddef>
@@ -95,7 +95,7 @@ inline Result<std::vector<unsigned char>> read_file(const std::string& path) {
   return bytes;
 }
 
-/// The header of a format whose data belongs to one configuration (a scene type, a damage meter's
+/// The header of a format whose data belongs to one configuration (a model, a damage meter's
 /// grid and S-N curve):
 ///   8-byte magic, u32 version, u32 byte-order mark 0x01020304,
 ///   u64 signature of the configuration, u64 payload size, u64 FNV-1a checksum of the payload.

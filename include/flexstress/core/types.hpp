@@ -79,7 +79,7 @@ using MatrixXd = Eigen::MatrixXd;
 /// Index type for nodes, elements and DOFs (Eigen's index type).
 using Index = Eigen::Index;
 
-/// Largest absolute entry, 0 for an empty vector (a scene without constraints has nc = 0;
+/// Largest absolute entry, 0 for an empty vector (a model without constraints has nc = 0;
 /// Eigen's maxCoeff() asserts on empty input), NaN if any entry is NaN (Eigen's default
 /// maxCoeff() may skip NaN, and a tolerance test on it would then pass a NaN state).
 template <class Derived>

@@ -147,7 +147,7 @@ class BodyModel {
   /// Modal damping D (N x N): D = M_ff^(1/2) 2 zeta Omega M_ff^(1/2) in the eigenbasis of
   /// (K, M_ff), which is diag(2 zeta omega) for orthonormal modes.
   const MatN& modal_damping() const { return damping_; }
-  /// Sets the same modal damping ratio for every mode (a scene knob, no reallocation).
+  /// Sets the same modal damping ratio for every mode (no reallocation).
   void set_damping_ratio(Scalar zeta) {
     zeta_.setConstant(zeta);
     update_damping();
@@ -171,9 +171,9 @@ class BodyModel {
   Mat3N phi_r(Index node) const { return phi_r_.template middleRows<3>(3 * node); }
   Mat3N phi_theta(Index node) const { return phi_theta_.template middleRows<3>(3 * node); }
 
-  /// Modal geometric stiffness per unit inertial load case, for scenes with the
-  /// GeometricStiffening effect (reduction/modal_geometric_stiffness.hpp). Fails if the data
-  /// has fewer modes than the body or is not finite.
+  /// Modal geometric stiffness per unit inertial load case, for geometric stiffening
+  /// (ModelBuilder::add_geometric_stiffening; reduction/modal_geometric_stiffness.hpp). Fails if
+  /// the data has fewer modes than the body or is not finite.
   Status set_geometric_stiffness(const reduction::ModalGeometricStiffness& g) {
     const int n = modes();
     if (g.num_modes < n)

@@ -1,5 +1,5 @@
-// A valve-controlled hydraulic cylinder as a force element (active with the HydraulicDrive
-// effect): lumped-fluid theory (Watton, Fluid Power Systems, 1989, ch. 4; Merritt, Hydraulic
+// A valve-controlled hydraulic cylinder (ModelBuilder::add_hydraulic_cylinder): lumped-fluid
+// theory (Watton, Fluid Power Systems, 1989, ch. 4; Merritt, Hydraulic
 // Control Systems, 1967, ch. 5). Two chambers, each one lump of oil with bulk modulus beta,
 //
 //   V1(x) / beta * p1' = Q1 - A1 x',      V1 = V01 + A1 x           (cap side)
@@ -14,8 +14,8 @@
 // force on marker j is (p1 A1 - p2 A2) along the line from i to j (extending).
 //
 // Solved inside the implicit step: the chamber pressures are internal states of the element,
-// kept in the scene's State at the start of the step. At each evaluation of an iterate (x, x')
-// the pressures at its time follow from a discrete balance of each chamber,
+// kept in the Data (Data::force_states) as of the start of the step. At each evaluation of an
+// iterate (x, x') the pressures at its time follow from a discrete balance of each chamber,
 //
 //   p - p_n = beta / V_mid * [ h (Q(p) + Q_n) / 2 - A (x - x_n) ]        (chamber 1; 2 alike)
 //
@@ -26,7 +26,7 @@
 // rises), solved by a few Newton iterations. The pressures are eliminated this way (not added to
 // the global unknowns): the oil column's stiffness beta A^2 / V is left out of the iteration
 // matrix, which the modified Newton of the implicit integrator absorbs while it is small against M
-// / (beta_N h^2). After an accepted step, Scene::commit_force_states stores the new pressures.
+// / (beta_N h^2). After an accepted step, hydraulics::commit stores the new pressures.
 #pragma once
 
 #include <algorithm>
@@ -34,8 +34,6 @@
 #include <limits>
 
 #include "flexstress/core/types.hpp"
-#include "flexstress/dynamics/effects.hpp"
-#include "flexstress/dynamics/marker.hpp"
 
 namespace flexstress {
 
@@ -92,8 +90,8 @@ Scalar solve_chamber(Scalar b, Scalar k, const Flow& flow) {
   return v;
 }
 
-/// Checks the parameters (Scene::check_effect_data, so initialize() reports them): the name of
-/// the first one out of its domain, or nullptr.
+/// Checks the parameters (ModelBuilder::add_hydraulic_cylinder, so finalize() reports them): the
+/// name of the first one out of its domain, or nullptr.
 template <class Scalar>
 const char* check(const HydraulicParams<Scalar>& p) {
   const auto positive = [](Scalar v) { return std::isfinite(double(v)) && v > Scalar(0); };
@@ -205,40 +203,5 @@ void commit(const HydraulicParams<Scalar>& p, HydraulicState<Scalar>& s, Scalar 
 }
 
 }  // namespace hydraulics
-
-/// Hydraulic cylinder between marker i (cylinder, body I) and marker j (rod, body J) of a
-/// compile-time scene, its valve driven by the command u(t) = Law(t).value (dimensionless, -1..1
-/// for full opening).
-template <int I, int J, template <class> class Law>
-struct HydraulicCylinder {
-  static constexpr int body_i = I, body_j = J;
-  using effect = HydraulicDrive;
-  template <class Scalar>
-  struct Params : HydraulicParams<Scalar> {
-    Law<Scalar> command{};  ///< valve command u(t)
-  };
-  template <class Scalar>
-  using State = HydraulicState<Scalar>;
-
-  template <class Scalar>
-  static const char* check(const Params<Scalar>& p) {
-    return hydraulics::check<Scalar>(p);
-  }
-  template <class Scalar, int NI, int NJ>
-  static Vec3<Scalar> force(const Params<Scalar>& p, const State<Scalar>& s, Scalar t,
-                            const MarkerEval<Scalar, NI>& i, const MarkerEval<Scalar, NJ>& j) {
-    return hydraulics::force<Scalar>(p, s, t, p.command(t).value, i.origin.value, j.origin.value);
-  }
-  template <class Scalar, int NI, int NJ>
-  static void start(const Params<Scalar>& p, State<Scalar>& s, Scalar t,
-                    const MarkerEval<Scalar, NI>& i, const MarkerEval<Scalar, NJ>& j) {
-    hydraulics::start<Scalar>(p, s, t, p.command(t).value, i.origin.value, j.origin.value);
-  }
-  template <class Scalar, int NI, int NJ>
-  static void commit(const Params<Scalar>& p, State<Scalar>& s, Scalar t,
-                     const MarkerEval<Scalar, NI>& i, const MarkerEval<Scalar, NJ>& j) {
-    hydraulics::commit<Scalar>(p, s, t, p.command(t).value, i.origin.value, j.origin.value);
-  }
-};
 
 }  // namespace flexstress

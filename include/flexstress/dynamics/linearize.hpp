@@ -1,7 +1,8 @@
-// Linearization of a scene about an equilibrium (v = 0): mass and stiffness matrices on the
-// tangent space of the constraints, and the natural frequencies of small vibrations.
+// Linearization about an equilibrium (v = 0): mass and stiffness matrices on the tangent space
+// of the constraints, and the natural frequencies of small vibrations (model/equilibrium.hpp's
+// linearize builds M and K_eff, this reduces them).
 //
-// M is the scene's mass matrix; K_eff = d/dx (B^T lambda - Q) by central differences along each
+// M is the mass matrix; K_eff = d/dx (B^T lambda - Q) by central differences along each
 // velocity direction (so geometric stiffness of gravity and joint reactions is included); both
 // are projected on an orthonormal basis N of the null space of B (the motions the joints allow):
 // K_r = N^T K_eff N, M_r = N^T M N. For tests and design studies; allocates.
@@ -15,7 +16,6 @@
 
 #include "flexstress/core/precompute.hpp"
 #include "flexstress/core/status.hpp"
-#include "flexstress/dynamics/scene.hpp"
 
 namespace flexstress {
 
@@ -56,39 +56,6 @@ Result<Linearization> linearization_on_null_space(const Eigen::MatrixXd& m, Eige
         (l >= 0 ? 1 : -1) * std::sqrt(std::abs(l)) / (2 * 3.14159265358979323846);
   }
   return lin;
-}
-
-/// Linearizes `scene` about the state s (velocities are treated as zero; s.lambda must hold the
-/// equilibrium multipliers, e.g. from solve_static_equilibrium).
-template <class SceneT>
-Result<Linearization> linearize(const SceneT& scene, const typename SceneT::State& s,
-                                double step = 1e-7) {
-  using State = typename SceneT::State;
-  const int nv = SceneT::nv;
-  typename SceneT::Workspace w;
-  State base = s;
-  base.v.setZero();
-  scene.evaluate(base, w);
-  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(nv, nv);
-  scene.mass_blocks(w, m);
-  const Eigen::MatrixXd b = w.jac.template cast<double>();
-  auto residual = [&](const Eigen::VectorXd& dx) {
-    State q = base;
-    typename SceneT::VecV d;
-    d.setZero(nv);
-    d = dx.cast<typename SceneT::scalar_type>();
-    scene.integrate(q, d);
-    typename SceneT::Workspace wq;
-    scene.evaluate(q, wq);
-    return Eigen::VectorXd((wq.jac.transpose() * base.lambda - wq.force).template cast<double>());
-  };
-  Eigen::MatrixXd k(nv, nv);
-  for (int j = 0; j < nv; ++j) {
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(nv);
-    e(j) = step;
-    k.col(j) = (residual(e) - residual(-e)) / (2 * step);
-  }
-  return linearization_on_null_space(m, k, b);
 }
 
 }  // namespace flexstress

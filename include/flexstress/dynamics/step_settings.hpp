@@ -1,5 +1,5 @@
 // Settings and statistics of the implicit integrator (Lie-group generalized-alpha with an
-// index-3 augmented Lagrangian; dynamics/implicit_integrator.hpp explains the method), shared by
+// index-3 augmented Lagrangian; model/implicit_step.hpp explains the method), shared by
 // every model representation that steps with it.
 #pragma once
 
@@ -90,7 +90,7 @@ struct ImplicitSettings {
   /// Real-time budget: a step that reaches max_iterations with a finite state keeps its last
   /// iterate instead of being undone (counted in Statistics::over_budget), so each step costs
   /// at most max_iterations corrections. The accuracy this costs is measured in
-  /// bench/accuracy_vs_time. It is also how a scene passes singular configurations, where
+  /// bench/accuracy_vs_time. It is also how a model passes singular configurations, where
   /// the multipliers are undefined and their update stalls (docs/dynamics.md, IFToMM A02).
   bool accept_at_iteration_limit = false;
 };

@@ -1,6 +1,6 @@
 // Checkpoint and restore of a live damage meter (StreamingDamage): the rainflow residue, the
 // reversal filter's pending state, the counts and the compensated damage sum, so that a fatigue
-// campaign split across jobs (with the scene's checkpoint, dynamics/checkpoint.hpp) counts
+// campaign split across jobs (with the model's checkpoint, model/checkpoint.hpp) counts
 // exactly as one that never stopped.
 //
 // Format, version 1 (host byte order, which must be little-endian; checked), in the envelope of

@@ -2,9 +2,13 @@
 // allocate).
 //
 // Static equilibrium: the coordinates at which the applied forces balance the joint reactions,
-// with all velocities zero, at d.t (drivers at their prescribed positions), by the
-// pseudo-transient Newton iteration of dynamics/static_equilibrium.hpp:
-// S dx = -(B^T (lambda* + alpha Phi) - Q), S = K + alpha B^T B + c M, lambda* += alpha Phi.
+// with all velocities zero, at d.t (drivers at their prescribed positions): a run that starts
+// there starts without a jolt. Solved by a pseudo-transient Newton iteration,
+// S dx = -(B^T (lambda* + alpha Phi) - Q), S = K + alpha B^T B + c M (modal stiffness,
+// constraint penalty, and c M with c = (2 pi f)^2 a regularization that vanishes at convergence
+// and keeps rigid directions that only gravity holds from taking unbounded steps), and
+// lambda* += alpha Phi after each iteration. Needs a model whose joints and drivers hold every
+// rigid motion (a crane driven by its cylinder); a free mechanism has no static equilibrium.
 //
 // Linearization about an equilibrium (v = 0): M and K_eff = d/dx (B^T lambda - Q) (central
 // differences, so the geometric stiffness of gravity and of the joint reactions is included),
@@ -20,12 +24,23 @@
 
 #include "flexstress/core/status.hpp"
 #include "flexstress/dynamics/linearize.hpp"
-#include "flexstress/dynamics/static_equilibrium.hpp"
 #include "flexstress/model/data.hpp"
 #include "flexstress/model/model.hpp"
 #include "flexstress/model/pipeline.hpp"
 
 namespace flexstress {
+
+struct StaticEquilibriumOptions {
+  int max_iterations = 200;
+  /// On the correction (m, rad, modal units) and the constraint violation; 0: 1e-10, or 100
+  /// epsilon if the model's Scalar cannot resolve that (float: 1.2e-5).
+  double tolerance = 0.0;
+  double regularization_hz = 1.0;  ///< f in c = (2 pi f)^2
+  /// alpha B^T B relative to the largest diagonal of K + c M. The multiplier update removes
+  /// the penalty's bias, so a moderate factor converges in a few iterations; 1e6 made the
+  /// matrix of a stiff flexible body singular to double precision (condition > 1e15).
+  double penalty_factor = 1e3;
+};
 
 /// B as a dense nc x nv matrix (setup: allocates).
 template <class Scalar>

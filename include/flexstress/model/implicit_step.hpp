@@ -1,8 +1,37 @@
 // The implicit step over (model, data): Lie-group generalized-alpha with an index-3 augmented
-// Lagrangian, modified Newton on a reused envelope-Cholesky factorization turned with the
-// bodies, and optional velocity projection. The method, its references and the measurements
-// behind each setting are in dynamics/implicit_integrator.hpp and dynamics/step_settings.hpp;
-// this is the same algorithm on a runtime model.
+// Lagrangian and velocity projection. The measurements behind each setting are in
+// dynamics/step_settings.hpp.
+//
+// Time discretization (Bruls & Cardona, J. Comput. Nonlinear Dyn. 5 (2010) 031002; Arnold,
+// Bruls, Cardona, Multibody Syst. Dyn. 33 (2015)): with v_dot the true and a the algorithmic
+// accelerations,
+//   (1 - am) a_{n+1} + am a_n = (1 - af) v_dot_{n+1} + af v_dot_n,
+//   v_{n+1} = v_n + h ((1 - g) a_n + g a_{n+1}),
+//   q_{n+1} = q_n o exp(h dq),  dq = v_n + h ((1/2 - b) a_n + b a_{n+1}),
+// where "o exp" moves R and p additively and theta = theta (x) exp(.) on the rotation group, so
+// the velocities stay the body-frame w and second order is kept despite rotations (a textbook
+// alpha method on q_dot = v with renormalized Euler parameters is only first order).
+// Parameters from the spectral radius at infinity rho (Chung & Hulbert 1993):
+// am = (2 rho - 1)/(rho + 1), af = rho/(rho + 1), g = 1/2 - am + af, b = (g + 1/2)^2 / 4;
+// rho = 1 is the trapezoidal rule without numerical dissipation.
+//
+// Constraints (index 3, positions enforced exactly): augmented Lagrangian (Bayo, Garcia de Jalon,
+// Serna 1988; Cuadrado et al., ALI3-P, Multibody Syst. Dyn. 4 (2000)):
+//   M v_dot - Q + B^T (lambda* + alpha Phi) = 0,  lambda* += alpha Phi after each iteration.
+// The Newton matrix S = M b' + D g' + K + alpha B^T B (b' = (1 - am)/(h^2 b (1 - af)),
+// g' = g/(h b)) is symmetric positive definite even when B is rank-deficient (redundant joints
+// such as a planar loop modelled in 3D, singular positions), so no KKT system is ever solved.
+// Modified Newton: S is factorized once and reused across iterations and steps until the
+// observed contraction rate says it is stale; it is factorized within its envelope in a body
+// order that skips the zero blocks between bodies no joint joins (core/envelope_cholesky.hpp).
+// A reused S is turned with the bodies (ImplicitSettings::corotate_factorization): with global
+// R_dot and body-frame w and p_dot, a body's own blocks of M and B^T B are T S_0 T^T with T =
+// diag(A, 1, 1), so rotating the R_dot parts of the residual and correction by the rotation since
+// the factorization makes them exact again for any rigid rotation. With
+// ImplicitSettings::project_velocities, after convergence the velocities are projected onto B v +
+// Phi_t = 0 with the same factorization, a projection orthogonal in the metric S (dominated by M
+// b'), which removes velocity drift. d.lambda then holds the multipliers of the converged
+// equations, lambda* + alpha Phi.
 #pragma once
 
 #include <algorithm>

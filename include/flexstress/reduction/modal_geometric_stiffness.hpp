@@ -1,8 +1,8 @@
-// Modal geometric stiffness for the GeometricStiffening effect: the stiffening (or softening)
-// that the stress of a body's own inertial and gravity loads gives its modes, as a linear
-// combination of precomputed unit load cases (Wallrapp, "Standardization of flexible body
-// modeling in multibody system codes", Mech. Struct. Mach. 22 (1994): the geometric stiffness
-// terms of the standard input data; Shabana, Dynamics of Multibody Systems, ch. 5 on
+// Modal geometric stiffness for geometric stiffening (ModelBuilder::add_geometric_stiffening): the
+// stiffening (or softening) that the stress of a body's own inertial and gravity loads gives its
+// modes, as a linear combination of precomputed unit load cases (Wallrapp, "Standardization of
+// flexible body modeling in multibody system codes", Mech. Struct. Mach. 22 (1994): the geometric
+// stiffness terms of the standard input data; Shabana, Dynamics of Multibody Systems, ch. 5 on
 // centrifugal stiffening).
 //
 // A material point at x (body frame) of a body whose frame has origin acceleration a (body

@@ -1,6 +1,6 @@
-// The data of the GeometricStiffening effect: modal geometric stiffness matrices per unit
-// inertial load case (computed by modal_geometric_stiffness.hpp; kept apart so that the
-// dynamics layer does not include the FE solvers).
+// The data of geometric stiffening (ModelBuilder::add_geometric_stiffening): modal geometric
+// stiffness matrices per unit inertial load case (computed by modal_geometric_stiffness.hpp; kept
+// apart so that the dynamics layer does not include the FE solvers).
 #pragma once
 
 #include <array>

@@ -11,7 +11,7 @@
 // y += G g with G = R_inertia U_inertia precomputed once (12 solves with the factorization the
 // sub-model already has). Neglected: the detail's elastic accelerations (its local modes are far
 // above the host's) and Coriolis forces on its elastic velocities, both second order here.
-// A scene that does not want this simply does not build it.
+// A model that does not want this simply does not build it.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,4 +1,4 @@
-// Shared builders for the dynamics tests: reduced flexible bodies from FE models built in code.
+// Shared builders for the model and stress tests: reduced flexible bodies from FE models built in code.
 #pragma once
 
 #include <vector>

@@ -1,4 +1,5 @@
-// Shared builders for the model and stress tests: reduced flexible bodies from FE models built in code.
+// Shared builders for the model and stress tests: reduced flexible bodies from FE models built in
+// code.
 #pragma once
 
 #include <vector>

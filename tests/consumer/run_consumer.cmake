@@ -17,6 +17,11 @@ run_step("${CMAKE_COMMAND}" -S "${CONSUMER_SOURCE_DIR}" -B "${SCRATCH_DIR}/build
   "-DCMAKE_PREFIX_PATH=${prefix}" "-DCMAKE_CXX_COMPILER=${CMAKE_CXX_COMPILER}")
 run_step("${CMAKE_COMMAND}" --build "${SCRATCH_DIR}/build")
 run_step("${SCRATCH_DIR}/build/consumer")
+# An install with the compiled libraries must give a working model program too.
+file(GLOB_RECURSE compiled_targets "${prefix}/*/flexstressCompiledTargets.cmake")
+if(compiled_targets)
+  run_step("${SCRATCH_DIR}/build/model_consumer")
+endif()
 
 # pkg-config: the installed flexstress.pc (and Eigen's own eigen3.pc) give every flag needed.
 find_program(PKG_CONFIG_EXECUTABLE NAMES pkg-config pkgconf REQUIRED)

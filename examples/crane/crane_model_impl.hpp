@@ -1,0 +1,220 @@
+// The crane's assembly (crane_model.hpp): its parts, the welded detail's sub-model and outputs,
+// and the two drives. Included by crane_model.cpp (double) and crane_model_float.cpp (float, for
+// the accuracy study) only, so that the programs that build a crane do not each compile it.
+#pragma once
+
+#include "crane_model.hpp"
+
+namespace crane {
+
+namespace assembly {
+
+/// Handles of the parts both drives share.
+struct Parts {
+  BodyId boom, cylinder, rod;
+  JointId a, b;
+  MarkerId cylinder_origin, rod_origin;
+};
+
+/// Bodies, markers and the four joints of the crane (A, C, B and the cylinder's slide), in the
+/// order the step's matrices follow: boom, cylinder, rod; and the effects `o` asks for.
+template <class Scalar>
+Status add_crane_parts(ModelBuilder<Scalar>& b, const CraneSpec& spec, const Boom& boom,
+                       const CraneOptions& o, Parts& p) {
+  using V3 = Vec3<Scalar>;
+  using M3 = Mat3<Scalar>;
+  p.boom = b.add_flexible_body("boom", boom.data, o.modes);
+  if (!o.modal_damping) b.set_damping_ratio(p.boom, Scalar(0));
+  if (o.geometric_stiffening) {
+    // The boom's inertial loads leave it through A and B: both clamped for the stress states
+    // (docs/crane.md).
+    auto g = reduction::modal_geometric_stiffness(boom.mesh, boom.data,
+                                                  reduction::clamp_interface_nodes(boom.data));
+    if (!g) return g.error();
+    b.add_geometric_stiffening(p.boom, *g);
+  }
+  // Cylinder and rod: slender rigid bodies, frames with z along C -> B, origins at C and B;
+  // centres of mass half a length inside.
+  const double lc = spec.cylinder_length, lr = spec.rod_length;
+  const double ic = spec.cylinder_mass * lc * lc / 12, ir = spec.rod_mass * lr * lr / 12;
+  p.cylinder =
+      b.add_rigid_body("cylinder", Scalar(spec.cylinder_mass), V3(0, 0, Scalar(lc / 2)),
+                       Vector3d(ic, ic, 1e-3 * ic).asDiagonal().toDenseMatrix().cast<Scalar>());
+  p.rod = b.add_rigid_body("rod", Scalar(spec.rod_mass), V3(0, 0, Scalar(-lr / 2)),
+                           Vector3d(ir, ir, 1e-3 * ir).asDiagonal().toDenseMatrix().cast<Scalar>());
+  const Vector3d cb = (spec.b - spec.c).normalized();
+  const Matrix3d frame = frame_with_z_axis<double>(cb);
+  const EulerParameters<Scalar> along_cb = from_rotation_matrix<double>(frame).cast<Scalar>();
+  b.set_initial_pose(p.cylinder, spec.c.cast<Scalar>(), along_cb);
+  b.set_initial_pose(p.rod, spec.b.cast<Scalar>(), along_cb);
+  // A: boom on the support (revolute about z). C: cylinder on the support (universal: the
+  // revolute about z plus the in-plane cross axis, so the loop is not over-constrained). B: rod
+  // on the boom (spherical), 0.125 m below the boom node at 0.32 m.
+  const M3 planar = M3::Identity();
+  const M3 cross =
+      (frame.transpose() * frame_with_z_axis<double>(Vector3d(cb.y(), -cb.x(), 0))).cast<Scalar>();
+  p.a = b.add_joint("A", JointKind::revolute,
+                    b.add_marker("A on support", b.ground(), -1, spec.a.cast<Scalar>(), planar),
+                    b.add_marker("A on boom", p.boom, boom.node_a, V3::Zero(), planar));
+  b.add_joint("C", JointKind::universal,
+              b.add_marker("C on support", b.ground(), -1, spec.c.cast<Scalar>(), planar),
+              b.add_marker("C on cylinder", p.cylinder, -1, V3::Zero(), cross));
+  p.b = b.add_joint("B", JointKind::spherical,
+                    b.add_marker("B on boom", p.boom, boom.node_b,
+                                 V3((spec.b - Vector3d(spec.b_node_x, 0, 0)).cast<Scalar>())),
+                    b.add_marker("B on rod", p.rod, -1));
+  p.cylinder_origin = b.add_marker("cylinder axis", p.cylinder, -1);
+  p.rod_origin = b.add_marker("rod axis", p.rod, -1);
+  b.add_joint("slide", JointKind::prismatic, p.cylinder_origin, p.rod_origin);
+  if (o.gravity) b.set_gravity(V3(0, Scalar(-9.81), 0));
+  if (!o.quadratic_velocity) b.approximate_without_quadratic_velocity();
+  return Status::success();
+}
+
+/// The detail's sub-model, read-outs and fused rows (docs/crane.md); crane_detail.cpp.
+Result<Detail> make_detail(const CraneSpec& spec, const Boom& boom, int modes);
+
+/// The detail's outputs on the boom, its hot spot's damage meter and (optionally) its inertia.
+template <class Scalar>
+Status add_detail_outputs(ModelBuilder<Scalar>& b, const Detail& d, BodyId boom, bool with_inertia,
+                          OutputId& first, MeterId& meter) {
+  first = b.add_stress_outputs("detail D", boom, d.fused, d.names);
+  if (with_inertia) {
+    auto inertia = stress::SubModelInertia<>::build(*d.sub, d.outputs);
+    if (!inertia) return inertia.error();
+    b.add_output_inertia(first, inertia->rows());
+  }
+  auto empty = make_damage_meter<Scalar>();
+  if (!empty) return empty.error();
+  meter = b.add_damage_meter("hot spot (MPa)", OutputId{first.index + int(d.hot_spot)}, *empty,
+                             Scalar(1e-6));
+  return Status::success();
+}
+
+}  // namespace assembly
+
+// make_crane (crane_model.hpp says what it builds).
+template <class Scalar>
+Result<BasicCrane<Scalar>> make_crane(const CraneSpec& spec, const CraneOptions& options,
+                                      const std::vector<double>& t, const std::vector<double>& ds) {
+  BasicCrane<Scalar> cr;
+  cr.spec = spec;
+  cr.options = options;
+  if (options.modes < 1 || options.modes > max_runtime_modes)
+    return make_error(ErrorCode::invalid_argument, "crane: ", options.modes,
+                      " boom modes; from 1 to ", max_runtime_modes);
+  auto boom = make_boom(spec, options.modes);
+  if (!boom) return boom.error();
+  cr.boom = std::move(*boom);
+  auto detail = assembly::make_detail(spec, cr.boom, options.modes);
+  if (!detail) return detail.error();
+  cr.detail = std::move(*detail);
+  cr.initial_length = (spec.b - spec.c).norm();
+
+  // The stroke-driven crane: the driver slides the rod along the cylinder's z by the table.
+  // The hydraulic crane starts from its equilibrium held at the initial stroke.
+  const std::vector<double> t_held = {0.0, 1.0}, ds_held = {0.0, 0.0};
+  const auto& t_drive = options.hydraulic ? t_held : t;
+  const auto& ds_drive = options.hydraulic ? ds_held : ds;
+  std::vector<double> stroke(ds_drive);
+  for (double& v : stroke) v += cr.initial_length;
+  auto law = TableLaw<Scalar>::create(t_drive, stroke);
+  if (!law) return law.error();
+  ModelBuilder<Scalar> driven;
+  assembly::Parts parts;
+  if (Status st = assembly::add_crane_parts(driven, spec, cr.boom, options, parts); !st)
+    return st.error();
+  const JointId driver =
+      driven.add_driver("stroke", JointKind::prismatic_driver, parts.cylinder_origin,
+                        parts.rod_origin, MotionLaw<Scalar>::from_table(std::move(*law)));
+  OutputId first;
+  MeterId meter;
+  if (Status st = assembly::add_detail_outputs(driven, cr.detail, parts.boom, options.with_inertia,
+                                               first, meter);
+      !st)
+    return st.error();
+  auto driven_model = driven.finalize();
+  if (!driven_model) return driven_model.error();
+  Data<Scalar> at_rest(*driven_model);
+  if (Status st = solve_static_equilibrium(*driven_model, at_rest); !st) return st.error();
+  cr.boom_body = parts.boom;
+  cr.cylinder = parts.cylinder;
+  cr.rod = parts.rod;
+  cr.joint_a = parts.a;
+  cr.joint_b = parts.b;
+  cr.outputs = first;
+  cr.hot_spot_meter = meter;
+  if (!options.hydraulic) {
+    cr.model = std::move(*driven_model);
+    cr.initial = std::move(at_rest);
+    cr.stroke_driver = driver;
+    return cr;
+  }
+
+  // The hydraulic crane: the cylinder takes over with the cap-side pressure balancing the
+  // driver's force at rest, and its valve follows a command cycle made from the stroke cycle
+  // by load-flow feedforward at the load at rest. Open loop, like an operator's lever: the
+  // stroke follows the plan only roughly.
+  const auto& hs = spec.hydraulics;
+  const double pi = 3.14159265358979323846, l0 = cr.initial_length;
+  const double a1 = pi / 4 * hs.bore * hs.bore, a2 = a1 - pi / 4 * hs.rod * hs.rod;
+  const double gain = hs.rated_flow / std::sqrt(hs.rated_drop);
+  // The force the driver holds the rod out with.
+  const double force = double(driver_effort(*driven_model, at_rest, driver));
+  const double p2 = hs.rod_side_pressure, p1 = (force + p2 * a2) / a1;
+  if (!(p1 > hs.tank && p1 < hs.supply))
+    return make_error(ErrorCode::invalid_argument, "hydraulic crane: holding the load takes ",
+                      p1 / 1e5, " bar on the cap side, outside tank (", hs.tank / 1e5,
+                      " bar) to supply (", hs.supply / 1e5, " bar)");
+  auto plan = TableLaw<double>::create(t, ds);
+  if (!plan) return plan.error();
+  // Steady flow through both valve edges at the load F (Merritt, ch. 5, for a differential
+  // cylinder): extending p1 = ps - (A1 v / K u)^2, p2 = pt + (A2 v / K u)^2 and p1 A1 - p2 A2 = F
+  // give (K u)^2 = (A1^3 + A2^3) v^2 / (ps A1 - pt A2 - F); retracting (supply to the rod side)
+  // (K u)^2 = (A1^3 + A2^3) v^2 / (F - pt A1 + ps A2).
+  const double cubes = a1 * a1 * a1 + a2 * a2 * a2;
+  if (!(hs.supply * a1 - hs.tank * a2 - force > 0 && force - hs.tank * a1 + hs.supply * a2 > 0))
+    return make_error(ErrorCode::invalid_argument, "hydraulic crane: the load ", force,
+                      " N is beyond what the supply pressure can lift or lower");
+  std::vector<double> tc, uc;
+  for (double tk = t.front(); tk < t.back() + 0.5 * hs.command_interval;
+       tk += hs.command_interval) {
+    const double rate = (*plan)(tk).rate;
+    const double margin =
+        rate >= 0 ? hs.supply * a1 - hs.tank * a2 - force : force - hs.tank * a1 + hs.supply * a2;
+    tc.push_back(tk);
+    uc.push_back(std::clamp(rate * std::sqrt(cubes / margin) / gain, -1.0, 1.0));
+  }
+  auto command = TableLaw<Scalar>::create(tc, uc);
+  if (!command) return command.error();
+  HydraulicParams<Scalar> hp;
+  hp.bore_area = Scalar(a1);
+  hp.annulus_area = Scalar(a2);
+  hp.stroke = Scalar(hs.stroke);
+  hp.length_retracted = Scalar(l0 - hs.initial_position);
+  hp.dead_volume_cap = hp.dead_volume_rod = Scalar(hs.dead_volume);
+  hp.bulk_modulus = Scalar(hs.bulk_modulus);
+  hp.supply_pressure = Scalar(hs.supply);
+  hp.tank_pressure = Scalar(hs.tank);
+  hp.flow_gain = Scalar(gain);
+  ModelBuilder<Scalar> valved;
+  assembly::Parts same;
+  if (Status st = assembly::add_crane_parts(valved, spec, cr.boom, options, same); !st)
+    return st.error();
+  cr.hydraulic_cylinder = valved.add_hydraulic_cylinder(
+      "cylinder", same.cylinder_origin, same.rod_origin, hp,
+      MotionLaw<Scalar>::from_table(std::move(*command)), Scalar(p1), Scalar(p2));
+  if (Status st = assembly::add_detail_outputs(valved, cr.detail, same.boom, options.with_inertia,
+                                               first, meter);
+      !st)
+    return st.error();
+  auto valved_model = valved.finalize();
+  if (!valved_model) return valved_model.error();
+  cr.model = std::move(*valved_model);
+  cr.initial = Data<Scalar>(cr.model);
+  cr.initial.q = at_rest.q;  // the same bodies in the same order
+  cr.initial.t = at_rest.t;
+  return cr;
+}
+
+}  // namespace crane

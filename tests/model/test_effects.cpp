@@ -17,7 +17,7 @@ using namespace flexstress;
 
 namespace {
 
-// The hinged beam of test_flexible_scenes: 2 m steel RHS 40 x 20 x 2, revolute about z at x = 0.
+// The hinged beam of test_flexible_models: 2 m steel RHS 40 x 20 x 2, revolute about z at x = 0.
 testing::BeamBody hinged_beam(int fixed_modes) {
   return testing::make_beam_body(2.0, fe::rectangular_hollow_section(0.04, 0.02, 0.002), 24, {0.0},
                                  fixed_modes);

@@ -152,7 +152,7 @@ TEST_CASE("open valve: the slide reaches the load-flow velocity of the valve") {
 
 // The energy audit counts the oil force's work: with a closed valve and no damper, the slide's
 // kinetic energy is exchanged with the oil springs and W follows it.
-TEST_CASE("energy audit of a hydraulic scene: the oil force's work balances the motion") {
+TEST_CASE("energy audit of a hydraulic model: the oil force's work balances the motion") {
   const double a2 = kBore - kRod, p1 = 50e5, p2 = p1 * kBore / a2;
   const Run r = slide(a2, 0.25, 0.0, 0.0, p1, p2, 0.05, 1e-4, 0.05);
   MESSAGE("max |r| " << r.energy_residual << " J of max |E - E0| " << r.energy_change << " J");
@@ -195,7 +195,7 @@ TEST_CASE("a hydraulic cylinder with bad parameters is refused at initialize") {
 
 // Checkpoints carry the chamber pressures (force-element states) with the rest: a run stopped
 // mid-stroke and restored ends bit-identical to one that never stopped.
-TEST_CASE("checkpoint of a hydraulic scene restores the chamber pressures bit-identically") {
+TEST_CASE("checkpoint of a hydraulic model restores the chamber pressures bit-identically") {
   const Slide s = make_slide(kBore - kRod, 0.2, 0.3, 2000.0, 50e5, 50e5 * kBore / (kBore - kRod));
   Data<double> a(s.model);
   a.settings.step = 1e-4;

@@ -245,7 +245,7 @@ TEST_CASE(
 TEST_CASE("extrapolated multipliers start Newton elsewhere but reach the same motion") {
   // The predictor's multipliers are a starting guess: the converged step solves the same
   // equations to the Newton tolerance either way, so the motions may differ only by that.
-  // (What the guess saves is checked on a flexible body, test_flexible_scenes.cpp: on this
+  // (What the guess saves is checked on a flexible body, test_flexible_models.cpp: on this
   // rigid loop the multipliers change little per step and it saves nothing.)
   const CraneLoop loop = build_crane_loop(JointKind::spherical, JointKind::universal);
   const Model<double>& m = loop.model;

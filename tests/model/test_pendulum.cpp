@@ -124,7 +124,7 @@ TEST_CASE("a Newton budget keeps the step's last iterate instead of failing") {
   CHECK(kept.v.allFinite());
 }
 
-TEST_CASE("bad scene input: a non-finite state and a bad motion table get errors naming them") {
+TEST_CASE("bad model input: a non-finite state and a bad motion table get errors naming them") {
   const Pendulum nan_start = make_pendulum(Vector3d(1, std::nan(""), 0));
   Data<double> s(nan_start.model);
   const Status st = initialize(nan_start.model, s);

@@ -104,6 +104,19 @@ struct Reaction {
   Vec3<Scalar> force = Vec3<Scalar>::Zero();
   Vec3<Scalar> moment = Vec3<Scalar>::Zero();
 };
+namespace detail {
+/// B_rigid^T lambda over a joint's rows on one body, row by row: a dynamic-size product would
+/// evaluate into a heap temporary.
+template <class Scalar, class Lambda>
+Eigen::Matrix<Scalar, 6, 1> rigid_columns_times(const ConstRowBlock<Scalar>& rows,
+                                                const Lambda& lambda) {
+  Eigen::Matrix<Scalar, 6, 1> g = Eigen::Matrix<Scalar, 6, 1>::Zero();
+  for (Eigen::Index r = 0; r < rows.rows(); ++r)
+    g += lambda(r) * rows.row(r).template head<6>().transpose();
+  return g;
+}
+}  // namespace detail
+
 template <class Scalar>
 Reaction<Scalar> joint_reaction(const Model<Scalar>& m, const Data<Scalar>& d, JointId id) {
   const auto& j = m.joint(id);
@@ -114,7 +127,7 @@ Reaction<Scalar> joint_reaction(const Model<Scalar>& m, const Data<Scalar>& d, J
   if (j.body_j >= 0) {
     const auto& b = m.bodies()[static_cast<std::size_t>(j.body_j)];
     const detail::ConstRowBlock<Scalar> rows(d.jacobian.data() + j.jac_j, j.equations, b.nv);
-    const Eigen::Matrix<Scalar, 6, 1> g = -(rows.leftCols(6).transpose() * lambda);
+    const Eigen::Matrix<Scalar, 6, 1> g = -detail::rigid_columns_times(rows, lambda);
     force = g.template head<3>();
     // Moment about the frame origin (body axes) to the global moment about marker j's origin.
     const Mat3<Scalar> a = rotation_matrix<Scalar>(d.q.template segment<4>(b.q_offset + 3));
@@ -124,7 +137,7 @@ Reaction<Scalar> joint_reaction(const Model<Scalar>& m, const Data<Scalar>& d, J
     // Marker j on the ground: the reaction on the ground is minus that on body i.
     const auto& b = m.bodies()[static_cast<std::size_t>(j.body_i)];
     const detail::ConstRowBlock<Scalar> rows(d.jacobian.data() + j.jac_i, j.equations, b.nv);
-    const Eigen::Matrix<Scalar, 6, 1> g = rows.leftCols(6).transpose() * lambda;
+    const Eigen::Matrix<Scalar, 6, 1> g = detail::rigid_columns_times(rows, lambda);
     force = g.template head<3>();
     const Mat3<Scalar> a = rotation_matrix<Scalar>(d.q.template segment<4>(b.q_offset + 3));
     const Vec3<Scalar> r = fj.origin - d.q.template segment<3>(b.q_offset);

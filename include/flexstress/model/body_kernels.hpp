@@ -11,6 +11,8 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -22,6 +24,7 @@
 #include "flexstress/dynamics/body_model.hpp"
 #include "flexstress/dynamics/marker.hpp"
 #include "flexstress/model/joint_rows.hpp"
+#include "flexstress/reduction/modal_body_data.hpp"
 #include "flexstress/reduction/modal_geometric_stiffness_data.hpp"
 
 namespace flexstress {
@@ -392,5 +395,31 @@ template <class Scalar, int N>
 const BodyKernels<Scalar>& body_kernels() {
   return detail::BodyKernelImpl<Scalar, N>::table;
 }
+
+namespace detail {
+
+/// A body's holder and kernels (ModelBuilder).
+template <class Scalar, int N>
+std::pair<std::shared_ptr<void>, const BodyKernels<Scalar>*> make_holder(BodyModel<Scalar, N> b) {
+  auto h = std::make_shared<BodyHolder<Scalar, N>>();
+  h->body = std::move(b);
+  return {h, &body_kernels<Scalar, N>()};
+}
+
+template <class Scalar, int N>
+void adopt_flexible(const reduction::ModalBodyData& data, int modes, bool& done,
+                    std::shared_ptr<void>& holder, const BodyKernels<Scalar>*& kernels,
+                    Error& error) {
+  if (done || modes != N) return;
+  done = true;
+  auto b = BodyModel<Scalar, N>::from_modal_data(data, N);
+  if (!b) {
+    error = b.error();
+    return;
+  }
+  std::tie(holder, kernels) = make_holder<Scalar, N>(std::move(*b));
+}
+
+}  // namespace detail
 
 }  // namespace flexstress

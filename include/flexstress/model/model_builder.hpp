@@ -36,31 +36,6 @@
 
 namespace flexstress {
 
-namespace detail {
-
-template <class Scalar, int N>
-std::pair<std::shared_ptr<void>, const BodyKernels<Scalar>*> make_holder(BodyModel<Scalar, N> b) {
-  auto h = std::make_shared<BodyHolder<Scalar, N>>();
-  h->body = std::move(b);
-  return {h, &body_kernels<Scalar, N>()};
-}
-
-template <class Scalar, int N>
-void adopt_flexible(const reduction::ModalBodyData& data, int modes, bool& done,
-                    std::shared_ptr<void>& holder, const BodyKernels<Scalar>*& kernels,
-                    Error& error) {
-  if (done || modes != N) return;
-  done = true;
-  auto b = BodyModel<Scalar, N>::from_modal_data(data, N);
-  if (!b) {
-    error = b.error();
-    return;
-  }
-  std::tie(holder, kernels) = make_holder<Scalar, N>(std::move(*b));
-}
-
-}  // namespace detail
-
 template <class Scalar>
 class ModelBuilder {
  public:

@@ -1,4 +1,4 @@
-// The crane's assembly for double: the crane program, its C interface and the benchmarks.
+// The crane's assembly for double: the crane program and the benchmarks.
 #include "crane_model_impl.hpp"
 
 namespace crane {

@@ -45,16 +45,64 @@ struct CraneOptions {
 
 /// The damage meter of every crane run: IIW hot-spot FAT 100, slope 3 to the knee at 1e7 and
 /// Haibach (5) beyond, as IIW recommends for variable amplitude; streaming rainflow on 128
-/// classes over +-400 MPa, fed in MPa.
+/// classes over +-400 MPa, fed in MPa. One place for the numbers: the C export writes them.
+struct MeterSpec {
+  double fat = 100;                  ///< MPa at 2e6 cycles
+  double lower = -400, upper = 400;  ///< the class window (MPa)
+  int classes = 128;
+  double scale = 1e-6;  ///< the hot spot's Pa to MPa
+};
+
 template <class Scalar = double>
 Result<DamageMeter<Scalar>> make_damage_meter() {
-  auto curve = fatigue::iiw_normal_curve(Scalar(100), fatigue::IiwBeyondKnee::haibach);
+  const MeterSpec s;
+  auto curve = fatigue::iiw_normal_curve(Scalar(s.fat), fatigue::IiwBeyondKnee::haibach);
   if (!curve) return curve.error();
   auto model = fatigue::DamageModel<Scalar>::create(*curve);
   if (!model) return model.error();
-  auto grid = fatigue::ClassGrid<Scalar>::create(Scalar(-400), Scalar(400), 128);
+  auto grid = fatigue::ClassGrid<Scalar>::create(Scalar(s.lower), Scalar(s.upper), s.classes);
   if (!grid) return grid.error();
   return DamageMeter<Scalar>::create(*grid, 0, *model);
+}
+
+/// The crane's rigid parts and where its joints hold them, in double (add_crane_parts casts
+/// them; the C export writes them). Cylinder and rod: slender bodies, frames with z along
+/// C -> B, origins at C and B, centres of mass half a length inside.
+struct PartsLayout {
+  double cylinder_mass = 0, rod_mass = 0;
+  Vector3d cylinder_com, rod_com;          ///< in the body frames
+  Matrix3d cylinder_inertia, rod_inertia;  ///< about the centres of mass, body axes
+  Vector3d cylinder_position, rod_position;
+  EulerParameters<double> orientation;  ///< of both: z along C -> B
+  Vector3d support_a, support_c;        ///< A's and C's markers on the ground
+  /// C's marker on the cylinder: z along the in-plane cross axis, so that the universal joint
+  /// with the support's z axis leaves the loop not over-constrained.
+  Matrix3d cylinder_c_axes;
+  Vector3d boom_b_offset;  ///< B's marker on the boom, from the node at b_node_x
+  Vector3d gravity;
+};
+
+inline PartsLayout parts_layout(const CraneSpec& spec) {
+  PartsLayout l;
+  const double lc = spec.cylinder_length, lr = spec.rod_length;
+  const double ic = spec.cylinder_mass * lc * lc / 12, ir = spec.rod_mass * lr * lr / 12;
+  l.cylinder_mass = spec.cylinder_mass;
+  l.rod_mass = spec.rod_mass;
+  l.cylinder_com = Vector3d(0, 0, lc / 2);
+  l.rod_com = Vector3d(0, 0, -lr / 2);
+  l.cylinder_inertia = Vector3d(ic, ic, 1e-3 * ic).asDiagonal().toDenseMatrix();
+  l.rod_inertia = Vector3d(ir, ir, 1e-3 * ir).asDiagonal().toDenseMatrix();
+  const Vector3d cb = (spec.b - spec.c).normalized();
+  const Matrix3d frame = frame_with_z_axis<double>(cb);
+  l.cylinder_position = spec.c;
+  l.rod_position = spec.b;
+  l.orientation = from_rotation_matrix<double>(frame);
+  l.support_a = spec.a;
+  l.support_c = spec.c;
+  l.cylinder_c_axes = frame.transpose() * frame_with_z_axis<double>(Vector3d(cb.y(), -cb.x(), 0));
+  l.boom_b_offset = spec.b - Vector3d(spec.b_node_x, 0, 0);
+  l.gravity = Vector3d(0, -9.81, 0);
+  return l;
 }
 
 /// The welded detail D: its sub-model, the read-outs on it and their fused rows in the boom's

@@ -33,40 +33,34 @@ Status add_crane_parts(ModelBuilder<Scalar>& b, const CraneSpec& spec, const Boo
     if (!g) return g.error();
     b.add_geometric_stiffening(p.boom, *g);
   }
-  // Cylinder and rod: slender rigid bodies, frames with z along C -> B, origins at C and B;
-  // centres of mass half a length inside.
-  const double lc = spec.cylinder_length, lr = spec.rod_length;
-  const double ic = spec.cylinder_mass * lc * lc / 12, ir = spec.rod_mass * lr * lr / 12;
-  p.cylinder =
-      b.add_rigid_body("cylinder", Scalar(spec.cylinder_mass), V3(0, 0, Scalar(lc / 2)),
-                       Vector3d(ic, ic, 1e-3 * ic).asDiagonal().toDenseMatrix().cast<Scalar>());
-  p.rod = b.add_rigid_body("rod", Scalar(spec.rod_mass), V3(0, 0, Scalar(-lr / 2)),
-                           Vector3d(ir, ir, 1e-3 * ir).asDiagonal().toDenseMatrix().cast<Scalar>());
-  const Vector3d cb = (spec.b - spec.c).normalized();
-  const Matrix3d frame = frame_with_z_axis<double>(cb);
-  const EulerParameters<Scalar> along_cb = from_rotation_matrix<double>(frame).cast<Scalar>();
-  b.set_initial_pose(p.cylinder, spec.c.cast<Scalar>(), along_cb);
-  b.set_initial_pose(p.rod, spec.b.cast<Scalar>(), along_cb);
+  // Cylinder and rod on the support and the boom (parts_layout says where).
+  const PartsLayout l = parts_layout(spec);
+  p.cylinder = b.add_rigid_body("cylinder", Scalar(l.cylinder_mass), l.cylinder_com.cast<Scalar>(),
+                                l.cylinder_inertia.cast<Scalar>());
+  p.rod = b.add_rigid_body("rod", Scalar(l.rod_mass), l.rod_com.cast<Scalar>(),
+                           l.rod_inertia.cast<Scalar>());
+  const EulerParameters<Scalar> along_cb = l.orientation.cast<Scalar>();
+  b.set_initial_pose(p.cylinder, l.cylinder_position.cast<Scalar>(), along_cb);
+  b.set_initial_pose(p.rod, l.rod_position.cast<Scalar>(), along_cb);
   // A: boom on the support (revolute about z). C: cylinder on the support (universal: the
   // revolute about z plus the in-plane cross axis, so the loop is not over-constrained). B: rod
   // on the boom (spherical), 0.125 m below the boom node at 0.32 m.
   const M3 planar = M3::Identity();
-  const M3 cross =
-      (frame.transpose() * frame_with_z_axis<double>(Vector3d(cb.y(), -cb.x(), 0))).cast<Scalar>();
-  p.a = b.add_joint("A", JointKind::revolute,
-                    b.add_marker("A on support", b.ground(), -1, spec.a.cast<Scalar>(), planar),
-                    b.add_marker("A on boom", p.boom, boom.node_a, V3::Zero(), planar));
-  b.add_joint("C", JointKind::universal,
-              b.add_marker("C on support", b.ground(), -1, spec.c.cast<Scalar>(), planar),
-              b.add_marker("C on cylinder", p.cylinder, -1, V3::Zero(), cross));
+  p.a =
+      b.add_joint("A", JointKind::revolute,
+                  b.add_marker("A on support", b.ground(), -1, l.support_a.cast<Scalar>(), planar),
+                  b.add_marker("A on boom", p.boom, boom.node_a, V3::Zero(), planar));
+  b.add_joint(
+      "C", JointKind::universal,
+      b.add_marker("C on support", b.ground(), -1, l.support_c.cast<Scalar>(), planar),
+      b.add_marker("C on cylinder", p.cylinder, -1, V3::Zero(), l.cylinder_c_axes.cast<Scalar>()));
   p.b = b.add_joint("B", JointKind::spherical,
-                    b.add_marker("B on boom", p.boom, boom.node_b,
-                                 V3((spec.b - Vector3d(spec.b_node_x, 0, 0)).cast<Scalar>())),
+                    b.add_marker("B on boom", p.boom, boom.node_b, l.boom_b_offset.cast<Scalar>()),
                     b.add_marker("B on rod", p.rod, -1));
   p.cylinder_origin = b.add_marker("cylinder axis", p.cylinder, -1);
   p.rod_origin = b.add_marker("rod axis", p.rod, -1);
   b.add_joint("slide", JointKind::prismatic, p.cylinder_origin, p.rod_origin);
-  if (o.gravity) b.set_gravity(V3(0, Scalar(-9.81), 0));
+  if (o.gravity) b.set_gravity(l.gravity.cast<Scalar>());
   if (!o.quadratic_velocity) b.approximate_without_quadratic_velocity();
   return Status::success();
 }
@@ -87,7 +81,7 @@ Status add_detail_outputs(ModelBuilder<Scalar>& b, const Detail& d, BodyId boom,
   auto empty = make_damage_meter<Scalar>();
   if (!empty) return empty.error();
   meter = b.add_damage_meter("hot spot (MPa)", OutputId{first.index + int(d.hot_spot)}, *empty,
-                             Scalar(1e-6));
+                             Scalar(MeterSpec().scale));
   return Status::success();
 }
 

@@ -1,6 +1,6 @@
 // The crane program's runs (main.cpp parses the options and picks one): the work cycle step by
 // step with the detail's stresses and damage per step (crane_run.cpp), the batch of operators
-// and the game loop (crane_programs.cpp).
+// and the game loop (crane_programs.cpp), and the export for the C interface (crane_export.cpp).
 #pragma once
 
 #include <string>
@@ -36,5 +36,9 @@ int run(const RunOptions& o);
 int run_operators(const RunOptions& o, int first, int count, unsigned threads);
 /// The cycle in a fixed-step game loop with frames at render_hz.
 int run_game_loop(const RunOptions& o, double render_hz, bool realtime);
+/// Writes what a C program needs to build the same stroke-driven crane through flexstress.h
+/// into `dir` (crane.txt, boom.fsmodal, detail_d.txt, cycle.csv; docs/crane.md has the
+/// format; c_api/demo.c reads them). Returns the exit code.
+int export_c_model(const RunOptions& o, const std::string& dir);
 
 }  // namespace crane

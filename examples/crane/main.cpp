@@ -1,7 +1,8 @@
 // The paper's crane: a work cycle of the flexible boom driven by its cylinder stroke, the
 // hot-spot stress at the welded detail D per step from fused modal rows, and its fatigue damage.
 // Run with --help for the options. Writes <output>/crane_history.csv, detail_d_peak.vtu and
-// crane_history.png (if gnuplot is installed); prints a summary, then "key: value" lines.
+// crane_history.png (if gnuplot is installed); prints a summary, then "key: value" lines. With
+// --export-c-model it writes the crane for the C interface instead (c_api/demo.c builds it).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -50,6 +51,11 @@ const char* kUsage =
     "  --render-hz HZ   the game loop's frame rate (default 60)\n"
     "  --realtime       pace the game loop's frames by the wall clock (default: a\n"
     "                   simulated clock with jitter, reproducible)\n"
+    "  --export-c-model DIR  write the stroke-driven crane (as --payload, --stroke,\n"
+    "                   --step, --tolerance, --modes, --density and --force-driven make\n"
+    "                   it) as files a C program builds it from through flexstress.h, and\n"
+    "                   stop: crane.txt, boom.fsmodal, detail_d.txt, cycle.csv\n"
+    "                   (docs/crane.md; crane_c_demo DIR runs them)\n"
     "  --output DIR     output folder (default crane-out)\n"
     "  --quiet          no progress line\n";
 
@@ -111,6 +117,7 @@ int main(int argc, char** argv) {
   double modes = o.crane.modes;
   double operators = 0, first_operator = 0, threads = 0, render_hz = 60;
   bool game_loop = false, realtime = false;
+  std::string export_dir;  // --export-c-model
   for (int i = 1; i < argc; ++i) {
     const std::string key = argv[i];
     if (key == "--help" || key == "-h") {
@@ -140,7 +147,7 @@ int main(int argc, char** argv) {
     const bool known = key == "--payload" || key == "--step" || key == "--tolerance" ||
                        key == "--density" || key == "--stroke" || key == "--output" ||
                        key == "--modes" || key == "--operators" || key == "--first-operator" ||
-                       key == "--threads" || key == "--render-hz";
+                       key == "--threads" || key == "--render-hz" || key == "--export-c-model";
     if (!known) {
       std::fprintf(stderr, "error: unknown option '%s'\n%s", key.c_str(), kUsage);
       return 2;
@@ -175,6 +182,8 @@ int main(int argc, char** argv) {
       ok = parse_number(key, value, render_hz) && render_hz >= 1 && render_hz <= 1000;
     else if (key == "--stroke")
       o.stroke_file = value;
+    else if (key == "--export-c-model")
+      export_dir = value;
     else
       o.output = value;
     if (!ok && key == "--modes") {
@@ -192,6 +201,17 @@ int main(int argc, char** argv) {
   else if (!read_stroke_csv(o.stroke_file, spec.hydraulics.initial_position, spec.hydraulics.stroke,
                             o.t, o.ds))
     return 1;
+  o.crane.modes = static_cast<int>(modes);
+  if (!export_dir.empty()) {
+    // flexstress.h has no hydraulic cylinder and no output inertia.
+    if (o.crane.hydraulic || o.crane.with_inertia || game_loop || operators > 0) {
+      std::fprintf(stderr,
+                   "error: --export-c-model writes the stroke-driven crane; it has no "
+                   "--hydraulic, --submodel-inertia, --game-loop or --operators form\n");
+      return 2;
+    }
+    return crane::export_c_model(o, export_dir);
+  }
   std::error_code dir_error;
   std::filesystem::create_directories(o.output, dir_error);
   if (dir_error) {
@@ -200,7 +220,6 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  o.crane.modes = static_cast<int>(modes);
   if (game_loop) {
     if (operators > 0) {
       std::fprintf(stderr, "error: --game-loop and --operators are separate runs\n");

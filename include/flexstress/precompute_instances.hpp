@@ -6,6 +6,8 @@
 // once:
 //   - in exactly one .cpp file:   #define FLEXSTRESS_INSTANTIATE_PRECOMPUTE
 //                                 #include <flexstress/precompute_instances.hpp>
+//     (or in four, compiled in parallel and in less memory each: the same with
+//     #define FLEXSTRESS_INSTANTIATE_PRECOMPUTE 1, ... 4)
 //   - everywhere else, define FLEXSTRESS_EXTERN_PRECOMPUTE (e.g. on the command line) and
 //     include this header after the flexstress headers (or force-include it).
 // Without either macro this header only includes the precompute headers. flexstress's own tests,
@@ -27,103 +29,132 @@
 #include "flexstress/stress/stress_outputs.hpp"
 #include "flexstress/stress/sub_model.hpp"
 
-// X(return type, qualified name, parameter list) for each precompute entry point.
-#define FLEXSTRESS_PRECOMPUTE_INSTANCES(X)                                                       \
-  X(Result<fe::SparseMatrixd>, fe::assemble_stiffness, (const fe::Mesh&, const fe::DofMap&))     \
-  X(Result<fe::SparseMatrixd>, fe::assemble_mass,                                                \
-    (const fe::Mesh&, const fe::DofMap&, const fe::MassOptions&))                                \
-  X(Result<fe::AssembledModel>, fe::assemble,                                                    \
-    (const fe::Mesh&, const fe::BoundaryConditions&, const fe::MassOptions&))                    \
-  X(Result<VectorXd>, fe::load_vector, (const fe::DofMap&, const std::vector<fe::NodalLoad>&))   \
-  X(Result<fe::DofMap>, fe::DofMap::build, (const fe::Mesh&))                                    \
-  X(Result<fe::ConstraintTransform>, fe::ConstraintTransform::build,                             \
-    (const fe::Mesh&, const fe::DofMap&, const fe::BoundaryConditions&))                         \
-  X(Result<fe::StaticSolver>, fe::StaticSolver::factorize,                                       \
-    (const fe::Mesh&, const fe::AssembledModel&))                                                \
-  X(VectorXd, fe::StaticSolver::solve_free, (const VectorXd&) const)                             \
-  X(VectorXd, fe::StaticSolver::solve, (const VectorXd&, const VectorXd&) const)                 \
-  X(VectorXd, fe::StaticSolver::solve, (const VectorXd&) const)                                  \
-  X(Result<fe::EigenSolution>, fe::solve_eigen,                                                  \
-    (const fe::SparseMatrixd&, const fe::SparseMatrixd&, const fe::EigenOptions&))               \
-  X(Result<fe::Matrix24d>, fe::hex8_stiffness,                                                   \
-    (const fe::Hex8Coordinates&, const fe::Material&, fe::Hex8Formulation, Index))               \
-  X(Result<fe::Matrix24d>, fe::hex8_mass,                                                        \
-    (const fe::Hex8Coordinates&, double, fe::MassLumping, Index))                                \
-  X(Result<fe::Hex8StressOperator>, fe::hex8_stress_operator,                                    \
-    (const fe::Hex8Coordinates&, const fe::Material&, fe::Hex8Formulation, const Vector3d&,      \
-     Index))                                                                                     \
-  X(fe::Matrix12d, fe::beam_stiffness, (const fe::Mesh&, const fe::BeamElement&))                \
-  X(fe::Matrix12d, fe::beam_mass,                                                                \
-    (const fe::Mesh&, const fe::BeamElement&, const fe::MassOptions&))                           \
-  X(Result<fe::BrickLocator>, fe::BrickLocator::build, (const fe::Mesh&, double))                \
-  X(Result<fe::BrickPoint>, fe::BrickLocator::locate, (const Vector3d&) const)                   \
-  X(void, fe::BeamGeometry::interpolation, (double, fe::Matrix3x12d&, fe::Matrix3x12d&) const)   \
-  X(Result<fe::SparseMatrixd>, fe::nodal_stress_operator,                                        \
-    (const fe::Mesh&, const fe::DofMap&, const std::vector<Index>&))                             \
-  X(Result<fe::SparseMatrixd>, fe::point_stress_operator,                                        \
-    (const fe::Mesh&, const fe::DofMap&, const std::vector<fe::BrickPoint>&))                    \
-  X(Result<fe::SparseMatrixd>, fe::point_stress_operator,                                        \
-    (const fe::Mesh&, const fe::DofMap&, const fe::BrickLocator&, const std::vector<Vector3d>&)) \
-  X(Result<fe::NodalStresses>, fe::nodal_stresses,                                               \
-    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                       \
-  X(Result<std::vector<fe::Hex8GaussStresses>>, fe::gauss_point_stresses,                        \
-    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                       \
-  X(Result<fe::Vector6d>, fe::stress_at_point,                                                   \
-    (const fe::Mesh&, const fe::DofMap&, const fe::BrickLocator&, const VectorXd&,               \
-     const Vector3d&))                                                                           \
-  X(Result<fe::Hex8Kinematics>, fe::hex8_kinematics, (const fe::Hex8Coordinates&, Index))        \
-  X(Result<fe::VtkData>, fe::standard_fields,                                                    \
-    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                       \
-  X(MatrixXd, fe::rigid_body_modes, (const fe::Mesh&, const fe::DofMap&, const Vector3d&))       \
-  X(Result<fe::RhsAttachmentMesh>, fe::make_rhs_attachment_mesh, (const fe::RhsAttachmentSpec&)) \
-  X(Status, fe::write_vtu,                                                                       \
-    (const std::string&, const fe::Mesh&, const fe::VtkData&, const fe::VtkOptions&))            \
-  X(Result<reduction::ComponentModes>, reduction::craig_bampton,                                 \
-    (const fe::Mesh&, const std::vector<reduction::InterfaceNode>&,                              \
-     const reduction::ModeSelection&, const fe::MassOptions&, const fe::EigenOptions&))          \
-  X(Result<reduction::ComponentModes>, reduction::craig_chang,                                   \
-    (const fe::Mesh&, const std::vector<reduction::InterfaceNode>&,                              \
-     const reduction::ModeSelection&, const fe::MassOptions&, const fe::EigenOptions&))          \
-  X(Result<reduction::DeformationModes>, reduction::orthonormalize,                              \
-    (const fe::Mesh&, const reduction::ComponentModes&))                                         \
-  X(Result<reduction::InertiaIntegrals>, reduction::inertia_integrals,                           \
-    (const fe::Mesh&, const fe::DofMap&, const MatrixXd&, const fe::MassOptions&))               \
-  X(Result<reduction::ModalBodyData>, reduction::make_modal_body,                                \
-    (const fe::Mesh&, const reduction::ComponentModes&, const reduction::ReductionSpec&))        \
-  X(Result<reduction::ModalBodyData>, reduction::reduce,                                         \
-    (const fe::Mesh&, const reduction::ReductionSpec&))                                          \
-  X(Result<fe::SparseMatrixd>, fe::assemble_geometric_stiffness,                                 \
-    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                       \
-  X(Result<reduction::ModalGeometricStiffness>, reduction::modal_geometric_stiffness,            \
-    (const fe::Mesh&, const reduction::ModalBodyData&, const fe::BoundaryConditions&))           \
-  X(Result<MatrixXd>, stress::boundary_modes,                                                    \
-    (const reduction::ModalBodyData&, const std::vector<stress::HostPoint>&))                    \
-  X(Result<stress::SubModel>, stress::SubModel::build,                                           \
-    (fe::Mesh, const std::vector<stress::SubModelAttachment>&))                                  \
-  X(Result<MatrixXd>, stress::SubModel::stress_influence, (const std::vector<Vector3d>&) const)  \
-  X(Result<MatrixXd>, stress::SubModel::stress_influence,                                        \
-    (const std::vector<Vector3d>&, const MatrixXd&) const)                                       \
-  X(Result<MatrixXd>, stress::SubModel::displacement_influence,                                  \
-    (const std::vector<Vector3d>&) const)                                                        \
-  X(Result<MatrixXd>, stress::SubModel::displacement_influence,                                  \
-    (const std::vector<Vector3d>&, const MatrixXd&) const)                                       \
-  X(MatrixXd, stress::SubModel::inertia_fields, () const)                                        \
-  X(VectorXd, stress::SubModel::solve, (const VectorXd&) const)                                  \
-  X(Result<VectorXd>, stress::SubModel::stresses_by_resolve,                                     \
-    (const std::vector<Vector3d>&, const VectorXd&) const)                                       \
-  X(Result<MatrixXd>, stress::StressOutputs::rows, (const stress::SubModel&) const)              \
-  X(Result<MatrixXd>, stress::StressOutputs::rows, (const stress::SubModel&, const MatrixXd&) const)
+// X(part, return type, qualified name, parameter list) for each precompute entry point, in four
+// parts of similar compile cost: FE assembly, elements and static solves (1); eigen solves,
+// stress recovery and output (2); reduction (3); sub-models (4).
+#define FLEXSTRESS_PRECOMPUTE_INSTANCES(X)                                                         \
+  X(1, Result<fe::SparseMatrixd>, fe::assemble_stiffness, (const fe::Mesh&, const fe::DofMap&))    \
+  X(1, Result<fe::SparseMatrixd>, fe::assemble_mass,                                               \
+    (const fe::Mesh&, const fe::DofMap&, const fe::MassOptions&))                                  \
+  X(1, Result<fe::AssembledModel>, fe::assemble,                                                   \
+    (const fe::Mesh&, const fe::BoundaryConditions&, const fe::MassOptions&))                      \
+  X(1, Result<VectorXd>, fe::load_vector, (const fe::DofMap&, const std::vector<fe::NodalLoad>&))  \
+  X(1, Result<fe::DofMap>, fe::DofMap::build, (const fe::Mesh&))                                   \
+  X(1, Result<fe::ConstraintTransform>, fe::ConstraintTransform::build,                            \
+    (const fe::Mesh&, const fe::DofMap&, const fe::BoundaryConditions&))                           \
+  X(1, Result<fe::StaticSolver>, fe::StaticSolver::factorize,                                      \
+    (const fe::Mesh&, const fe::AssembledModel&))                                                  \
+  X(1, VectorXd, fe::StaticSolver::solve_free, (const VectorXd&) const)                            \
+  X(1, VectorXd, fe::StaticSolver::solve, (const VectorXd&, const VectorXd&) const)                \
+  X(1, VectorXd, fe::StaticSolver::solve, (const VectorXd&) const)                                 \
+  X(1, Result<fe::Matrix24d>, fe::hex8_stiffness,                                                  \
+    (const fe::Hex8Coordinates&, const fe::Material&, fe::Hex8Formulation, Index))                 \
+  X(1, Result<fe::Matrix24d>, fe::hex8_mass,                                                       \
+    (const fe::Hex8Coordinates&, double, fe::MassLumping, Index))                                  \
+  X(1, fe::Matrix12d, fe::beam_stiffness, (const fe::Mesh&, const fe::BeamElement&))               \
+  X(1, fe::Matrix12d, fe::beam_mass,                                                               \
+    (const fe::Mesh&, const fe::BeamElement&, const fe::MassOptions&))                             \
+  X(1, Result<fe::Hex8Kinematics>, fe::hex8_kinematics, (const fe::Hex8Coordinates&, Index))       \
+  X(1, Result<fe::SparseMatrixd>, fe::assemble_geometric_stiffness,                                \
+    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                         \
+  X(2, Result<fe::EigenSolution>, fe::solve_eigen,                                                 \
+    (const fe::SparseMatrixd&, const fe::SparseMatrixd&, const fe::EigenOptions&))                 \
+  X(2, Result<fe::Hex8StressOperator>, fe::hex8_stress_operator,                                   \
+    (const fe::Hex8Coordinates&, const fe::Material&, fe::Hex8Formulation, const Vector3d&,        \
+     Index))                                                                                       \
+  X(2, Result<fe::BrickLocator>, fe::BrickLocator::build, (const fe::Mesh&, double))               \
+  X(2, Result<fe::BrickPoint>, fe::BrickLocator::locate, (const Vector3d&) const)                  \
+  X(2, void, fe::BeamGeometry::interpolation, (double, fe::Matrix3x12d&, fe::Matrix3x12d&) const)  \
+  X(2, Result<fe::SparseMatrixd>, fe::nodal_stress_operator,                                       \
+    (const fe::Mesh&, const fe::DofMap&, const std::vector<Index>&))                               \
+  X(2, Result<fe::SparseMatrixd>, fe::point_stress_operator,                                       \
+    (const fe::Mesh&, const fe::DofMap&, const std::vector<fe::BrickPoint>&))                      \
+  X(2, Result<fe::SparseMatrixd>, fe::point_stress_operator,                                       \
+    (const fe::Mesh&, const fe::DofMap&, const fe::BrickLocator&, const std::vector<Vector3d>&))   \
+  X(2, Result<fe::NodalStresses>, fe::nodal_stresses,                                              \
+    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                         \
+  X(2, Result<std::vector<fe::Hex8GaussStresses>>, fe::gauss_point_stresses,                       \
+    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                         \
+  X(2, Result<fe::Vector6d>, fe::stress_at_point,                                                  \
+    (const fe::Mesh&, const fe::DofMap&, const fe::BrickLocator&, const VectorXd&,                 \
+     const Vector3d&))                                                                             \
+  X(2, Result<fe::VtkData>, fe::standard_fields,                                                   \
+    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                         \
+  X(2, MatrixXd, fe::rigid_body_modes, (const fe::Mesh&, const fe::DofMap&, const Vector3d&))      \
+  X(2, Result<fe::RhsAttachmentMesh>, fe::make_rhs_attachment_mesh,                                \
+    (const fe::RhsAttachmentSpec&))                                                                \
+  X(2, Status, fe::write_vtu,                                                                      \
+    (const std::string&, const fe::Mesh&, const fe::VtkData&, const fe::VtkOptions&))              \
+  X(3, Result<reduction::ComponentModes>, reduction::craig_bampton,                                \
+    (const fe::Mesh&, const std::vector<reduction::InterfaceNode>&,                                \
+     const reduction::ModeSelection&, const fe::MassOptions&, const fe::EigenOptions&))            \
+  X(3, Result<reduction::ComponentModes>, reduction::craig_chang,                                  \
+    (const fe::Mesh&, const std::vector<reduction::InterfaceNode>&,                                \
+     const reduction::ModeSelection&, const fe::MassOptions&, const fe::EigenOptions&))            \
+  X(3, Result<reduction::DeformationModes>, reduction::orthonormalize,                             \
+    (const fe::Mesh&, const reduction::ComponentModes&))                                           \
+  X(3, Result<reduction::InertiaIntegrals>, reduction::inertia_integrals,                          \
+    (const fe::Mesh&, const fe::DofMap&, const MatrixXd&, const fe::MassOptions&))                 \
+  X(3, Result<reduction::ModalBodyData>, reduction::make_modal_body,                               \
+    (const fe::Mesh&, const reduction::ComponentModes&, const reduction::ReductionSpec&))          \
+  X(3, Result<reduction::ModalBodyData>, reduction::reduce,                                        \
+    (const fe::Mesh&, const reduction::ReductionSpec&))                                            \
+  X(3, Result<reduction::ModalGeometricStiffness>, reduction::modal_geometric_stiffness,           \
+    (const fe::Mesh&, const reduction::ModalBodyData&, const fe::BoundaryConditions&))             \
+  X(4, Result<MatrixXd>, stress::boundary_modes,                                                   \
+    (const reduction::ModalBodyData&, const std::vector<stress::HostPoint>&))                      \
+  X(4, Result<stress::SubModel>, stress::SubModel::build,                                          \
+    (fe::Mesh, const std::vector<stress::SubModelAttachment>&))                                    \
+  X(4, Result<MatrixXd>, stress::SubModel::stress_influence, (const std::vector<Vector3d>&) const) \
+  X(4, Result<MatrixXd>, stress::SubModel::stress_influence,                                       \
+    (const std::vector<Vector3d>&, const MatrixXd&) const)                                         \
+  X(4, Result<MatrixXd>, stress::SubModel::displacement_influence,                                 \
+    (const std::vector<Vector3d>&) const)                                                          \
+  X(4, Result<MatrixXd>, stress::SubModel::displacement_influence,                                 \
+    (const std::vector<Vector3d>&, const MatrixXd&) const)                                         \
+  X(4, MatrixXd, stress::SubModel::inertia_fields, () const)                                       \
+  X(4, VectorXd, stress::SubModel::solve, (const VectorXd&) const)                                 \
+  X(4, Result<VectorXd>, stress::SubModel::stresses_by_resolve,                                    \
+    (const std::vector<Vector3d>&, const VectorXd&) const)                                         \
+  X(4, Result<MatrixXd>, stress::StressOutputs::rows, (const stress::SubModel&) const)             \
+  X(4, Result<MatrixXd>, stress::StressOutputs::rows,                                              \
+    (const stress::SubModel&, const MatrixXd&) const)
 
+// FLEXSTRESS_INSTANTIATE_PRECOMPUTE defined empty instantiates every part; defined as a part
+// number, that part only, with the others declared extern (so it does not instantiate them
+// either where it calls them).
+#if defined(FLEXSTRESS_INSTANTIATE_PRECOMPUTE) || defined(FLEXSTRESS_EXTERN_PRECOMPUTE)
+#define FLEXSTRESS_PRECOMPUTE_KEYWORD_1 extern template
+#define FLEXSTRESS_PRECOMPUTE_KEYWORD_2 extern template
+#define FLEXSTRESS_PRECOMPUTE_KEYWORD_3 extern template
+#define FLEXSTRESS_PRECOMPUTE_KEYWORD_4 extern template
 #if defined(FLEXSTRESS_INSTANTIATE_PRECOMPUTE)
-#define FLEXSTRESS_PRECOMPUTE_INSTANCE(R, F, A) template R F<void> A;
+// 0 when the macro is empty (every part), else the part number.
+#define FLEXSTRESS_PRECOMPUTE_PART (0 + FLEXSTRESS_INSTANTIATE_PRECOMPUTE + 0)
+#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 1
+#undef FLEXSTRESS_PRECOMPUTE_KEYWORD_1
+#define FLEXSTRESS_PRECOMPUTE_KEYWORD_1 template
+#endif
+#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 2
+#undef FLEXSTRESS_PRECOMPUTE_KEYWORD_2
+#define FLEXSTRESS_PRECOMPUTE_KEYWORD_2 template
+#endif
+#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 3
+#undef FLEXSTRESS_PRECOMPUTE_KEYWORD_3
+#define FLEXSTRESS_PRECOMPUTE_KEYWORD_3 template
+#endif
+#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 4
+#undef FLEXSTRESS_PRECOMPUTE_KEYWORD_4
+#define FLEXSTRESS_PRECOMPUTE_KEYWORD_4 template
+#endif
+#endif
+#define FLEXSTRESS_PRECOMPUTE_INSTANCE(P, R, F, A) FLEXSTRESS_PRECOMPUTE_KEYWORD_##P R F<void> A;
 namespace flexstress {
 FLEXSTRESS_PRECOMPUTE_INSTANCES(FLEXSTRESS_PRECOMPUTE_INSTANCE)
 }  // namespace flexstress
 #undef FLEXSTRESS_PRECOMPUTE_INSTANCE
-#elif defined(FLEXSTRESS_EXTERN_PRECOMPUTE)
-#define FLEXSTRESS_PRECOMPUTE_INSTANCE(R, F, A) extern template R F<void> A;
-namespace flexstress {
-FLEXSTRESS_PRECOMPUTE_INSTANCES(FLEXSTRESS_PRECOMPUTE_INSTANCE)
-}  // namespace flexstress
-#undef FLEXSTRESS_PRECOMPUTE_INSTANCE
+#undef FLEXSTRESS_PRECOMPUTE_KEYWORD_1
+#undef FLEXSTRESS_PRECOMPUTE_KEYWORD_2
+#undef FLEXSTRESS_PRECOMPUTE_KEYWORD_3
+#undef FLEXSTRESS_PRECOMPUTE_KEYWORD_4
 #endif

@@ -14,12 +14,12 @@
 
 static int failures = 0;
 
-#define CHECK(cond)                                                \
-  do {                                                             \
-    if (!(cond)) {                                                 \
+#define CHECK(cond)                                                            \
+  do {                                                                         \
+    if (!(cond)) {                                                             \
       fprintf(stderr, "%s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond); \
-      ++failures;                                                  \
-    }                                                              \
+      ++failures;                                                              \
+    }                                                                          \
   } while (0)
 
 typedef struct reference {
@@ -47,8 +47,7 @@ typedef struct pendulum {
 } pendulum;
 
 /* The beam hinged about z at its x = 0 node, horizontal, with or without gravity. */
-static int build_pendulum(const char* modal_file, const reference* r, int gravity,
-                          pendulum* p) {
+static int build_pendulum(const char* modal_file, const reference* r, int gravity, pendulum* p) {
   const double g[3] = {0.0, -9.81, 0.0};
   fs_model_builder* b = fs_builder_create();
   int status;
@@ -134,12 +133,12 @@ static void check_swing(const char* modal_file, const reference* r) {
    * at rho = 0.9 damps only the beam's highest modes, barely excited here, so the total stays
    * within 1e-4 of that (measured with clang -O2: 5e-7 of it, 1.6e-5 J). */
   bound = 1e-4 * r->mass * 9.81 * r->length / 2;
-  printf("swing: 0.5 s, energy drift %.3e J (bound %.3e J), largest violation %.2e\n", drift,
-         bound, violation);
+  printf("swing: 0.5 s, energy drift %.3e J (bound %.3e J), largest violation %.2e\n", drift, bound,
+         violation);
   CHECK(drift < bound);
-  CHECK(e.kinetic > 0.1 * r->mass * 9.81 * r->length / 2);  /* it swung... */
+  CHECK(e.kinetic > 0.1 * r->mass * 9.81 * r->length / 2); /* it swung... */
   CHECK(fs_marker_frame(d, p.tip, origin, axes) == FS_OK);
-  CHECK(origin[1] < -0.5);                                    /* ...downwards */
+  CHECK(origin[1] < -0.5);                                     /* ...downwards */
   CHECK(fabs(hypot(origin[0], origin[1]) - r->length) < 0.01); /* a beam of its length */
   CHECK(fabs(axes[8] - 1.0) < 1e-6);                           /* turning about z */
   CHECK(violation < 1e-6);
@@ -314,6 +313,9 @@ static void check_drivers(void) {
   law = fs_law_table(table, 1);
   CHECK(fs_set_law(d, drive, &law) == FS_ERROR_INVALID_ARGUMENT);
   CHECK(strstr(fs_data_error(d), "two rows") != NULL);
+  law = fs_law_table(NULL, 3);
+  CHECK(fs_set_law(d, drive, &law) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_data_error(d), "null rows") != NULL);
   CHECK(fs_set_law(d, hinge, &law) != FS_OK); /* not a driver */
   fs_data_destroy(d);
   fs_model_destroy(m);
@@ -325,6 +327,8 @@ static void check_errors(const char* modal_file, const reference* r) {
   fs_data* d;
   char small[8];
   double x[3] = {0.0, 0.0, 0.0};
+  const double eye[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const double backwards[6] = {0.0, 0.0, 1.0, 0.05, 0.5, 0.1}; /* t: 0, 1, 0.5 */
   fs_motion_law law = fs_law_polynomial(0.0, 0.0, 0.0);
   int beam, pivot, status;
   /* A marker on a node the body lacks: finalize fails, naming the marker. */
@@ -362,6 +366,23 @@ static void check_errors(const char* modal_file, const reference* r) {
         FS_INVALID_HANDLE);
   fs_builder_destroy(b);
 
+  /* A driver's table whose time goes backwards: finalize names the joint and the row. A step
+   * of zero: finalize names the settings. */
+  b = fs_builder_create();
+  law = fs_law_table(backwards, 3);
+  CHECK(fs_builder_add_driver(b, "lift", FS_JOINT_PRISMATIC_DRIVER, 0, 1, &law) ==
+        FS_INVALID_HANDLE);
+  CHECK(fs_builder_finalize(b, &m) == FS_ERROR_INVALID_ARGUMENT && m == NULL);
+  CHECK(strstr(fs_builder_error(b), "joint 'lift'") != NULL);
+  CHECK(strstr(fs_builder_error(b), "time at row 3 (0.5) does not increase") != NULL);
+  fs_builder_destroy(b);
+  b = fs_builder_create();
+  fs_builder_add_rigid_body(b, "block", 1.0, x, eye);
+  CHECK(fs_builder_set_integrator(b, 0.0, 0.8, 30, 0.0) == FS_OK); /* finalize checks it */
+  CHECK(fs_builder_finalize(b, &m) == FS_ERROR_INVALID_ARGUMENT && m == NULL);
+  CHECK(strstr(fs_builder_error(b), "the step must be positive") != NULL);
+  fs_builder_destroy(b);
+
   /* Null pointers and handles of nothing: error codes, never a crash. */
   CHECK(fs_builder_add_marker(NULL, "m", FS_GROUND, -1, NULL, NULL) == FS_INVALID_HANDLE);
   CHECK(fs_builder_add_driver(NULL, "d", FS_JOINT_REVOLUTE_DRIVER, 0, 1, &law) ==
@@ -372,12 +393,19 @@ static void check_errors(const char* modal_file, const reference* r) {
   CHECK(fs_initialize(NULL) == FS_ERROR_NULL);
   CHECK(fs_model_num_velocities(NULL) == -1);
   CHECK(isnan(fs_time(NULL)) && isnan(fs_constraint_violation(NULL)));
+  CHECK(fs_evaluate_outputs(NULL) != FS_STEP_OK);
+  CHECK(isnan(fs_output_value(NULL, 0)) && isnan(fs_meter_damage(NULL, 0)));
+  CHECK(strcmp(fs_data_error(NULL), "fs_data_error: null data") == 0);
+  /* A null builder's error text, cut to the buffer and terminated like any other. */
+  CHECK(strcmp(fs_builder_error(NULL), "fs_builder_error: null builder") == 0);
+  CHECK(fs_builder_copy_error(NULL, small, sizeof small) == strlen(fs_builder_error(NULL)));
+  CHECK(strncmp(small, "fs_buil", sizeof small) == 0);
   fs_data_destroy(NULL);
   fs_model_destroy(NULL);
   fs_builder_destroy(NULL);
 
   b = fs_builder_create();
-  beam = fs_builder_add_rigid_body(b, "block", 1.0, x, (const double[9]){1, 0, 0, 0, 1, 0, 0, 0, 1});
+  beam = fs_builder_add_rigid_body(b, "block", 1.0, x, eye);
   CHECK(fs_builder_finalize(b, &m) == FS_OK);
   fs_builder_destroy(b);
   d = fs_data_create(m);
@@ -410,7 +438,9 @@ int main(int argc, char** argv) {
   check_drivers();
   check_outputs_and_checkpoints(argv[1], &r);
   check_errors(argv[1], &r);
-  if (failures) fprintf(stderr, "%d checks failed\n", failures);
-  else printf("all checks passed\n");
+  if (failures)
+    fprintf(stderr, "%d checks failed\n", failures);
+  else
+    printf("all checks passed\n");
   return failures ? 1 : 0;
 }

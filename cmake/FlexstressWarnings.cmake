@@ -29,12 +29,19 @@ endif()
 # object library, and declared `extern template` in every other translation unit of the tests,
 # examples and benchmarks (see include/flexstress/precompute_instances.hpp). Without this each
 # translation unit that calls the precompute spends tens of seconds instantiating it again.
-# In four parts (no compile job over 1.5 GB; GCC -O3 took 3.0 GB for the whole).
-add_library(flexstress_precompute_instances OBJECT
-  "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances_1.cpp"
-  "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances_2.cpp"
-  "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances_3.cpp"
-  "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances_4.cpp")
+# In parts (include/flexstress/precompute_instances.hpp), compiled in parallel: no job over
+# 1.5 GB (GCC -O3: 1.0 to 1.31 GB each; the whole in one unit took 3.0 GB, and clang 1.6 GB),
+# at about three times the total compile time of one unit (every part parses the headers).
+option(FLEXSTRESS_PRECOMPUTE_PARTS "Compile the precompute in parts of under 1.5 GB each" ON)
+if(FLEXSTRESS_PRECOMPUTE_PARTS)
+  set(_precompute_parts "")
+  foreach(_part RANGE 1 12)
+    list(APPEND _precompute_parts "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances_${_part}.cpp")
+  endforeach()
+else()
+  set(_precompute_parts "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances.cpp")
+endif()
+add_library(flexstress_precompute_instances OBJECT ${_precompute_parts})
 target_link_libraries(flexstress_precompute_instances PUBLIC flexstress::flexstress flexstress_dev_flags)
 
 # With PCH, the extern declarations come from a precompiled header (flexstress.hpp, then

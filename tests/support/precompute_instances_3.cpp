@@ -1,5 +1,4 @@
-// flexstress's precompute for the tests, examples and benchmarks, part 3 of 4: reduction
-// (see flexstress/precompute_instances.hpp). Four units compile in parallel, each in a
-// fraction of the memory of one.
+// flexstress's precompute for the tests, examples and benchmarks, part 3: element matrices
+// (see flexstress/precompute_instances.hpp: the parts compile in parallel, each in under 1.5 GB).
 #define FLEXSTRESS_INSTANTIATE_PRECOMPUTE 3
 #include <flexstress/precompute_instances.hpp>

@@ -287,13 +287,21 @@ struct BodyKernelImpl {
       Eigen::Map<Eigen::Matrix<Scalar, 1, 6>> rigid(row);
       rigid = s.rigid;
       if constexpr (N != 0) {
-        // Only the vectors the joint reads carry a weight.
-        typename ModalSizes<Scalar, N>::RowN modal = ModalSizes<Scalar, N>::RowN::Zero(n);
-        for (unsigned v = 0; v < 4; ++v)
-          if (parts & (1u << v))
-            modal.noalias() += s.weight[v].transpose().lazyProduct(vectors[v]->psi);
-        Eigen::Map<typename ModalSizes<Scalar, N>::RowN> modal_part(row + 6, n);
-        modal_part = modal;
+        // g^T Psi as a sum of Psi's rows, over the vectors the joint reads (the others carry
+        // no weight): whole rows of the mode count at a time.
+        Eigen::Map<typename ModalSizes<Scalar, N>::RowN> modal(row + 6, n);
+        bool first = true;
+        for (unsigned v = 0; v < 4; ++v) {
+          if (!(parts & (1u << v))) continue;
+          const auto& psi = vectors[v]->psi;
+          const Vec3<Scalar>& g = s.weight[v];
+          if (first)
+            modal.noalias() = g(0) * psi.row(0) + g(1) * psi.row(1) + g(2) * psi.row(2);
+          else
+            modal.noalias() += g(0) * psi.row(0) + g(1) * psi.row(1) + g(2) * psi.row(2);
+          first = false;
+        }
+        if (first) modal.setZero();
       }
     }
   }

@@ -92,7 +92,7 @@
 #define FLEXSTRESS_COMPILED_MODEL_STEP(D, S)                                                 \
   D void update_kinematics<S>(const Model<S>&, Data<S>&);                                    \
   D void update_markers<S>(const Model<S>&, Data<S>&, bool);                                 \
-  D void update_constraints<S>(const Model<S>&, Data<S>&);                                   \
+  D void update_constraints<S>(const Model<S>&, Data<S>&, bool);                             \
   D void add_marker_load<S>(const Model<S>&, Data<S>&, int, const Vec3<S>&, const Vec3<S>*); \
   D void update_dynamics<S>(const Model<S>&, Data<S>&);                                      \
   D void evaluate<S>(const Model<S>&, Data<S>&, bool);                                       \

@@ -126,18 +126,28 @@ struct RowSide {
   std::array<Vec3<Scalar>, 4> weight{Vec3<Scalar>::Zero(), Vec3<Scalar>::Zero(),
                                      Vec3<Scalar>::Zero(), Vec3<Scalar>::Zero()};
 
-  /// += s b^T J_origin (the origin is a point).
-  void add_origin(const MarkerState<Scalar>& m, const Vec3<Scalar>& b, Scalar s = Scalar(1)) {
-    const Vec3<Scalar> bb = s * (m.rotation.transpose() * b);
-    rigid.template head<3>() += s * b.transpose();
-    rigid.template tail<3>() += m.origin.local.cross(bb).transpose();
-    weight[0] += bb;
+  // Written out in scalars: these run for every row of every joint at every Newton iterate,
+  // and as Eigen expressions GCC left their 3-vector products to out-of-line calls.
+
+  /// += s b^T J_origin (the origin is a point): [s b^T | (u x bb)^T | bb^T Psi], bb = s A^T b.
+  FLEXSTRESS_ALWAYS_INLINE void add_origin(const MarkerState<Scalar>& m, const Vec3<Scalar>& b,
+                                           Scalar s = Scalar(1)) {
+    const Vec3<Scalar> bb = turned(m.rotation, b, s);
+    for (int c = 0; c < 3; ++c) rigid(c) += s * b(c);
+    add_moment_and_weight(m.origin.local, bb, 0);
+  }
+  /// += s e_c^T J_origin: one coordinate of the origin (A^T e_c is row c of A).
+  FLEXSTRESS_ALWAYS_INLINE void add_origin_component(const MarkerState<Scalar>& m, int c,
+                                                     Scalar s) {
+    const Mat3<Scalar>& a = m.rotation;
+    const Vec3<Scalar> bb(s * a(c, 0), s * a(c, 1), s * a(c, 2));
+    rigid(c) += s;
+    add_moment_and_weight(m.origin.local, bb, 0);
   }
   /// += s b^T J_axis(a) (a direction: no translation column).
-  void add_axis(const MarkerState<Scalar>& m, int a, const Vec3<Scalar>& b, Scalar s = Scalar(1)) {
-    const Vec3<Scalar> bb = s * (m.rotation.transpose() * b);
-    rigid.template tail<3>() += m.axis(a).local.cross(bb).transpose();
-    weight[static_cast<std::size_t>(1 + a)] += bb;
+  FLEXSTRESS_ALWAYS_INLINE void add_axis(const MarkerState<Scalar>& m, int a, const Vec3<Scalar>& b,
+                                         Scalar s = Scalar(1)) {
+    add_moment_and_weight(m.axis(a).local, turned(m.rotation, b, s), 1 + a);
   }
   /// The row of a s + b t (for combining rows).
   static RowSide combine(Scalar s, const RowSide& a, Scalar t, const RowSide& b) {
@@ -145,6 +155,25 @@ struct RowSide {
     r.rigid = s * a.rigid + t * b.rigid;
     for (std::size_t k = 0; k < 4; ++k) r.weight[k] = s * a.weight[k] + t * b.weight[k];
     return r;
+  }
+
+ private:
+  /// s A^T b.
+  static FLEXSTRESS_ALWAYS_INLINE Vec3<Scalar> turned(const Mat3<Scalar>& a, const Vec3<Scalar>& b,
+                                                      Scalar s) {
+    const Scalar b0 = s * b(0), b1 = s * b(1), b2 = s * b(2);
+    return Vec3<Scalar>(a(0, 0) * b0 + a(1, 0) * b1 + a(2, 0) * b2,
+                        a(0, 1) * b0 + a(1, 1) * b1 + a(2, 1) * b2,
+                        a(0, 2) * b0 + a(1, 2) * b1 + a(2, 2) * b2);
+  }
+  /// rigid's rotation columns += (u x bb)^T, weight[v] += bb.
+  FLEXSTRESS_ALWAYS_INLINE void add_moment_and_weight(const Vec3<Scalar>& u, const Vec3<Scalar>& bb,
+                                                      int v) {
+    rigid(3) += u(1) * bb(2) - u(2) * bb(1);
+    rigid(4) += u(2) * bb(0) - u(0) * bb(2);
+    rigid(5) += u(0) * bb(1) - u(1) * bb(0);
+    Vec3<Scalar>& w = weight[static_cast<std::size_t>(v)];
+    for (int c = 0; c < 3; ++c) w(c) += bb(c);
   }
 };
 
@@ -171,60 +200,72 @@ namespace joint_rows {
 template <class Scalar>
 using Rows = JointRows<Scalar>;
 
+// Each helper writes row r; conv only with rates (a Newton iterate needs Phi and B alone, and
+// its markers carry no velocities).
+
 /// a_i . b_j = 0 (dot-1).
 template <class Scalar>
-void perpendicular(const MarkerState<Scalar>& mi, int ai, const MarkerState<Scalar>& mj, int aj,
-                   Rows<Scalar>& out, int r) {
+FLEXSTRESS_ALWAYS_INLINE void perpendicular(const MarkerState<Scalar>& mi, int ai,
+                                            const MarkerState<Scalar>& mj, int aj,
+                                            Rows<Scalar>& out, int r, bool rates) {
   const auto k = static_cast<std::size_t>(r);
   const auto& a = mi.axis(ai);
   const auto& b = mj.axis(aj);
   out.phi[k] = a.value.dot(b.value);
   out.i[k].add_axis(mi, ai, b.value);
   out.j[k].add_axis(mj, aj, a.value);
-  out.conv[k] = a.convective.dot(b.value) + Scalar(2) * a.velocity.dot(b.velocity) +
-                a.value.dot(b.convective);
+  if (rates)
+    out.conv[k] = a.convective.dot(b.value) + Scalar(2) * a.velocity.dot(b.velocity) +
+                  a.value.dot(b.convective);
 }
 
 /// a_i . (r_j - r_i) = 0 (dot-2).
 template <class Scalar>
-void in_plane(const MarkerState<Scalar>& mi, int ai, const MarkerState<Scalar>& mj,
-              Rows<Scalar>& out, int r) {
+FLEXSTRESS_ALWAYS_INLINE void in_plane(const MarkerState<Scalar>& mi, int ai,
+                                       const MarkerState<Scalar>& mj, Rows<Scalar>& out, int r,
+                                       bool rates) {
   const auto k = static_cast<std::size_t>(r);
   const auto& a = mi.axis(ai);
   const Vec3<Scalar> d = mj.origin.value - mi.origin.value;
-  const Vec3<Scalar> d_dot = mj.origin.velocity - mi.origin.velocity;
   out.phi[k] = a.value.dot(d);
   out.i[k].add_axis(mi, ai, d);
   out.i[k].add_origin(mi, a.value, Scalar(-1));
   out.j[k].add_origin(mj, a.value);
-  out.conv[k] = a.convective.dot(d) + Scalar(2) * a.velocity.dot(d_dot) +
-                a.value.dot(Vec3<Scalar>(mj.origin.convective - mi.origin.convective));
+  if (rates) {
+    const Vec3<Scalar> d_dot = mj.origin.velocity - mi.origin.velocity;
+    out.conv[k] = a.convective.dot(d) + Scalar(2) * a.velocity.dot(d_dot) +
+                  a.value.dot(Vec3<Scalar>(mj.origin.convective - mi.origin.convective));
+  }
 }
 
-/// Component c of r_j - r_i = 0.
+/// r_j - r_i = 0, rows r to r + 2.
 template <class Scalar>
-void coincident(const MarkerState<Scalar>& mi, const MarkerState<Scalar>& mj, int c,
-                Rows<Scalar>& out, int r) {
-  const auto k = static_cast<std::size_t>(r);
-  const Vec3<Scalar> e = Vec3<Scalar>::Unit(c);
-  out.phi[k] = mj.origin.value(c) - mi.origin.value(c);
-  out.i[k].add_origin(mi, e, Scalar(-1));
-  out.j[k].add_origin(mj, e);
-  out.conv[k] = mj.origin.convective(c) - mi.origin.convective(c);
+FLEXSTRESS_ALWAYS_INLINE void coincident(const MarkerState<Scalar>& mi,
+                                         const MarkerState<Scalar>& mj, Rows<Scalar>& out, int r,
+                                         bool rates) {
+  for (int c = 0; c < 3; ++c) {
+    const auto k = static_cast<std::size_t>(r + c);
+    out.phi[k] = mj.origin.value(c) - mi.origin.value(c);
+    out.i[k].add_origin_component(mi, c, Scalar(-1));
+    out.j[k].add_origin_component(mj, c, Scalar(1));
+    if (rates) out.conv[k] = mj.origin.convective(c) - mi.origin.convective(c);
+  }
 }
 
 /// |r_j - r_i|^2 - L^2 = 0.
 template <class Scalar>
-void distance(const MarkerState<Scalar>& mi, const MarkerState<Scalar>& mj, Scalar length,
-              Rows<Scalar>& out, int r) {
+FLEXSTRESS_ALWAYS_INLINE void distance(const MarkerState<Scalar>& mi, const MarkerState<Scalar>& mj,
+                                       Scalar length, Rows<Scalar>& out, int r, bool rates) {
   const auto k = static_cast<std::size_t>(r);
   const Vec3<Scalar> d = mj.origin.value - mi.origin.value;
-  const Vec3<Scalar> d_dot = mj.origin.velocity - mi.origin.velocity;
   out.phi[k] = d.squaredNorm() - length * length;
   out.i[k].add_origin(mi, d, Scalar(-2));
   out.j[k].add_origin(mj, d, Scalar(2));
-  out.conv[k] = Scalar(2) * d_dot.squaredNorm() +
-                Scalar(2) * d.dot(Vec3<Scalar>(mj.origin.convective - mi.origin.convective));
+  if (rates) {
+    const Vec3<Scalar> d_dot = mj.origin.velocity - mi.origin.velocity;
+    out.conv[k] = Scalar(2) * d_dot.squaredNorm() +
+                  Scalar(2) * d.dot(Vec3<Scalar>(mj.origin.convective - mi.origin.convective));
+  }
 }
 
 /// Rate of a_i . b_j.
@@ -237,47 +278,48 @@ Scalar perpendicular_rate(const MarkerState<Scalar>& mi, int ai, const MarkerSta
 }  // namespace joint_rows
 
 /// The rows of a joint of kind `kind` between evaluated markers i and j at time t. `length` is
-/// a distance joint's; `law` a driver's prescribed motion at t.
+/// a distance joint's; `law` a driver's prescribed motion at t. Without rates, conv is left at
+/// zero (the markers were evaluated without velocities).
 template <class Scalar>
-void evaluate_joint_rows(JointKind kind, const MarkerState<Scalar>& i, const MarkerState<Scalar>& j,
-                         Scalar length, const MotionValue<Scalar>& law, JointRows<Scalar>& out) {
+FLEXSTRESS_FLATTEN void evaluate_joint_rows(JointKind kind, const MarkerState<Scalar>& i,
+                                            const MarkerState<Scalar>& j, Scalar length,
+                                            const MotionValue<Scalar>& law, JointRows<Scalar>& out,
+                                            bool rates = true) {
   namespace jr = joint_rows;
   out.reset(joint_equations(kind));
   switch (kind) {
-    case JointKind::spherical:
-      for (int c = 0; c < 3; ++c) jr::coincident(i, j, c, out, c);
-      return;
+    case JointKind::spherical: jr::coincident(i, j, out, 0, rates); return;
     case JointKind::revolute:
-      for (int c = 0; c < 3; ++c) jr::coincident(i, j, c, out, c);
-      jr::perpendicular(i, 2, j, 0, out, 3);
-      jr::perpendicular(i, 2, j, 1, out, 4);
+      jr::coincident(i, j, out, 0, rates);
+      jr::perpendicular(i, 2, j, 0, out, 3, rates);
+      jr::perpendicular(i, 2, j, 1, out, 4, rates);
       return;
     case JointKind::universal:
-      for (int c = 0; c < 3; ++c) jr::coincident(i, j, c, out, c);
-      jr::perpendicular(i, 2, j, 2, out, 3);
+      jr::coincident(i, j, out, 0, rates);
+      jr::perpendicular(i, 2, j, 2, out, 3, rates);
       return;
     case JointKind::cylindrical:
-      jr::in_plane(i, 0, j, out, 0);
-      jr::in_plane(i, 1, j, out, 1);
-      jr::perpendicular(i, 2, j, 0, out, 2);
-      jr::perpendicular(i, 2, j, 1, out, 3);
+      jr::in_plane(i, 0, j, out, 0, rates);
+      jr::in_plane(i, 1, j, out, 1, rates);
+      jr::perpendicular(i, 2, j, 0, out, 2, rates);
+      jr::perpendicular(i, 2, j, 1, out, 3, rates);
       return;
     case JointKind::prismatic:
-      jr::in_plane(i, 0, j, out, 0);
-      jr::in_plane(i, 1, j, out, 1);
-      jr::perpendicular(i, 2, j, 0, out, 2);
-      jr::perpendicular(i, 2, j, 1, out, 3);
-      jr::perpendicular(i, 0, j, 1, out, 4);
+      jr::in_plane(i, 0, j, out, 0, rates);
+      jr::in_plane(i, 1, j, out, 1, rates);
+      jr::perpendicular(i, 2, j, 0, out, 2, rates);
+      jr::perpendicular(i, 2, j, 1, out, 3, rates);
+      jr::perpendicular(i, 0, j, 1, out, 4, rates);
       return;
     case JointKind::fixed:
-      for (int c = 0; c < 3; ++c) jr::coincident(i, j, c, out, c);
-      jr::perpendicular(i, 2, j, 0, out, 3);
-      jr::perpendicular(i, 2, j, 1, out, 4);
-      jr::perpendicular(i, 0, j, 1, out, 5);
+      jr::coincident(i, j, out, 0, rates);
+      jr::perpendicular(i, 2, j, 0, out, 3, rates);
+      jr::perpendicular(i, 2, j, 1, out, 4, rates);
+      jr::perpendicular(i, 0, j, 1, out, 5, rates);
       return;
-    case JointKind::distance: jr::distance(i, j, length, out, 0); return;
+    case JointKind::distance: jr::distance(i, j, length, out, 0, rates); return;
     case JointKind::prismatic_driver:
-      jr::in_plane(i, 2, j, out, 0);
+      jr::in_plane(i, 2, j, out, 0, rates);
       out.phi[0] -= law.value;
       out.phi_t[0] = -law.rate;
       out.conv[0] -= law.acceleration;
@@ -292,8 +334,8 @@ void evaluate_joint_rows(JointKind kind, const MarkerState<Scalar>& i, const Mar
       const Scalar cdd = -c * law.rate * law.rate - s * law.acceleration;
       JointRows<Scalar> ab;
       ab.reset(2);
-      jr::perpendicular(i, 0, j, 0, ab, 0);  // x_i . x_j = cos(phi) when met
-      jr::perpendicular(i, 1, j, 0, ab, 1);  // y_i . x_j = sin(phi)
+      jr::perpendicular(i, 0, j, 0, ab, 0, true);  // x_i . x_j = cos(phi) when met
+      jr::perpendicular(i, 1, j, 0, ab, 1, true);  // y_i . x_j = sin(phi)
       const Scalar a_dot = jr::perpendicular_rate(i, 0, j, 0);
       const Scalar b_dot = jr::perpendicular_rate(i, 1, j, 0);
       out.phi[0] = s * ab.phi[0] - c * ab.phi[1];

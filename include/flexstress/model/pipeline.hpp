@@ -94,10 +94,10 @@ void update_markers(const Model<Scalar>& model, Data<Scalar>& d, bool rates = tr
   }
 }
 
-/// Stage 3: constraint values, Jacobian blocks, phi_t and conv at d.t (markers up to date).
-/// An inactive joint's rows read 0 = 0.
+/// Stage 3: constraint values, Jacobian blocks, phi_t and conv at d.t (markers up to date;
+/// without rates, as update_markers, conv is left out). An inactive joint's rows read 0 = 0.
 template <class Scalar>
-void update_constraints(const Model<Scalar>& model, Data<Scalar>& d) {
+void update_constraints(const Model<Scalar>& model, Data<Scalar>& d, bool rates = true) {
   JointRows<Scalar> rows;
   const auto& joints = model.joints();
   for (std::size_t k = 0; k < joints.size(); ++k) {
@@ -120,7 +120,7 @@ void update_constraints(const Model<Scalar>& model, Data<Scalar>& d) {
         j.law >= 0 ? d.laws[static_cast<std::size_t>(j.law)](d.t, d.inputs.data())
                    : MotionValue<Scalar>();
     evaluate_joint_rows(j.kind, d.markers[static_cast<std::size_t>(mi.slot)],
-                        d.markers[static_cast<std::size_t>(mj.slot)], j.length, law, rows);
+                        d.markers[static_cast<std::size_t>(mj.slot)], j.length, law, rows, rates);
     for (int r = 0; r < n; ++r) {
       d.phi(j.row + r) = rows.phi[static_cast<std::size_t>(r)];
       d.phi_t(j.row + r) = rows.phi_t[static_cast<std::size_t>(r)];
@@ -275,7 +275,7 @@ template <class Scalar>
 void evaluate(const Model<Scalar>& model, Data<Scalar>& d, bool rates = true) {
   update_kinematics(model, d);
   update_markers(model, d, rates);
-  update_constraints(model, d);
+  update_constraints(model, d, rates);
   update_dynamics(model, d);
 }
 

@@ -748,7 +748,7 @@ int fs_modal_coordinates(const fs_data* d, int body, double* p, int capacity, in
 }
 
 int fs_evaluate_outputs(fs_data* d) {
-  if (!d) return static_cast<int>(fsx::StepStatus::invalid_input);
+  if (!d) return null_argument("fs_evaluate_outputs"), FS_STEP_ERROR;
   return static_cast<int>(fsx::evaluate_outputs(*d->model, d->data));
 }
 

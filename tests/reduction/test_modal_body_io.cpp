@@ -48,8 +48,8 @@ std::string output_path(const char* name) {
 // Rewrites the header checksum after a deliberate change of the payload, so the check under
 // test is the one after the checksum.
 void reseal(std::vector<unsigned char>& bytes) {
-  const std::uint64_t h = io_detail::fnv1a(bytes.data() + io_detail::kHeaderSize,
-                                           bytes.size() - io_detail::kHeaderSize);
+  const std::uint64_t h =
+      binary::fnv1a(bytes.data() + modal_body_header_size, bytes.size() - modal_body_header_size);
   std::memcpy(bytes.data() + 24, &h, 8);
 }
 
@@ -63,7 +63,7 @@ std::string error_of(const std::vector<unsigned char>& bytes) {
 // Offset of eigenvalue i in the file: header, 3 flags, 3 counts, 3 scalars, S, Lambda.
 std::size_t eigenvalue_offset(const ModalBodyData& d, Index i) {
   const auto n = static_cast<std::size_t>(d.num_modes);
-  return io_detail::kHeaderSize + 3 + 24 + 24 + 8 * (3 * (n + 1) + 9 * (n + 1) * (n + 1)) +
+  return modal_body_header_size + 3 + 24 + 24 + 8 * (3 * (n + 1) + 9 * (n + 1) * (n + 1)) +
          8 * static_cast<std::size_t>(i);
 }
 
@@ -144,7 +144,7 @@ TEST_CASE("damaged or foreign modal body files get errors that say what is wrong
   }
   SUBCASE("counts that do not match the data") {
     auto bytes = good;
-    bytes[io_detail::kHeaderSize + 3] = 9;  // 9 modes announced, data for 7
+    bytes[modal_body_header_size + 3] = 9;  // 9 modes announced, data for 7
     reseal(bytes);
     CHECK(error_of(bytes).find("9 modes") != std::string::npos);
   }
@@ -159,13 +159,13 @@ TEST_CASE("damaged or foreign modal body files get errors that say what is wrong
     auto bytes = good;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     // After three one-byte codes, three counts and the mass: the mass residual.
-    std::memcpy(bytes.data() + io_detail::kHeaderSize + 3 + 3 * 8 + 8, &nan, 8);
+    std::memcpy(bytes.data() + modal_body_header_size + 3 + 3 * 8 + 8, &nan, 8);
     reseal(bytes);
     CHECK(error_of(bytes).find("orthonormalization residuals nan") != std::string::npos);
   }
   SUBCASE("an unknown reduction method") {
     auto bytes = good;
-    bytes[io_detail::kHeaderSize] = 7;
+    bytes[modal_body_header_size] = 7;
     reseal(bytes);
     CHECK(error_of(bytes).find("reduction method code 7") != std::string::npos);
   }
@@ -183,7 +183,7 @@ TEST_CASE("random corruption never crashes the loader (in-test fuzzing)") {
     } else if (kind == 1) {  // random truncation
       bytes.resize(rng() % bytes.size());
     } else {  // a random count or flag in the payload's first 51 bytes, then resealed
-      bytes[io_detail::kHeaderSize + rng() % 51] = static_cast<unsigned char>(rng());
+      bytes[modal_body_header_size + rng() % 51] = static_cast<unsigned char>(rng());
     }
     if (kind != 1 && (kind == 2 || trial % 2 == 0)) reseal(bytes);
     auto r = deserialize(bytes.data(), bytes.size(), "fuzz");

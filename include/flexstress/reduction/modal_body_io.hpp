@@ -60,6 +60,11 @@ inline bool all_finite(const double* p, std::size_t n) {
 
 }  // namespace io_detail
 
+/// Bytes before the payload (magic, version, byte-order mark, payload size, checksum): where
+/// the payload and its FNV-1a checksum (binary::fnv1a) start, for tools that write or inspect
+/// the format.
+inline constexpr std::size_t modal_body_header_size = io_detail::kHeaderSize;
+
 /// Serializes d into the version-1 byte layout (header included).
 inline Result<std::vector<unsigned char>> serialize(const ModalBodyData& d) {
   using io_detail::Writer;

@@ -76,6 +76,9 @@ struct ModalSizes {
   using RowN = BoundedMat<Scalar, 1, NModes, 1, bound>;
   using MatN = BoundedMat<Scalar, NModes, NModes, bound, bound>;
   using Mat3N = BoundedMat<Scalar, 3, NModes, 3, bound>;
+  /// 3 x N with each row contiguous: mode shapes read row by row (a Jacobian row's modal part
+  /// is a weighted sum of them).
+  using Mat3NRows = Eigen::Matrix<Scalar, 3, NModes, Eigen::RowMajor, 3, bound>;
   using VecV = BoundedMat<Scalar, nv, 1, nv_bound, 1>;
   using RowV = BoundedMat<Scalar, 1, nv, 1, nv_bound>;
   using MatV = BoundedMat<Scalar, nv, nv, nv_bound, nv_bound>;

@@ -31,7 +31,7 @@
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
 #include "flexstress/dynamics/body_vector.hpp"
-#include "flexstress/reduction/modal_body_data.hpp"
+#include "flexstress/reduction/modal_body.hpp"
 #include "flexstress/reduction/modal_geometric_stiffness_data.hpp"
 
 namespace flexstress {

@@ -44,7 +44,7 @@ struct BodyVector {
   using RowV = typename Sizes::RowV;
 
   Vec3<Scalar> c = Vec3<Scalar>::Zero();
-  typename Sizes::Mat3N psi = Sizes::Mat3N::Zero(3, NModes == Eigen::Dynamic ? 0 : NModes);
+  typename Sizes::Mat3NRows psi = Sizes::Mat3NRows::Zero(3, NModes == Eigen::Dynamic ? 0 : NModes);
   bool is_point = false;
 
   /// Body-frame value u = c + Psi p.

@@ -24,7 +24,7 @@
 #include "flexstress/dynamics/body_model.hpp"
 #include "flexstress/dynamics/marker.hpp"
 #include "flexstress/model/joint_rows.hpp"
-#include "flexstress/reduction/modal_body_data.hpp"
+#include "flexstress/reduction/modal_body.hpp"
 #include "flexstress/reduction/modal_geometric_stiffness_data.hpp"
 
 namespace flexstress {
@@ -179,8 +179,9 @@ struct BodyKernelImpl {
   static std::uint64_t fingerprint(const void* h) {
     const Holder& hb = holder(h);
     binary::Writer w;
-    const auto put = [&](const auto& m) {
-      for (Index i = 0; i < m.size(); ++i) w.put(m.data()[i]);
+    const auto put = [&](const auto& m) {  // column by column, whatever the storage order
+      for (Index c = 0; c < m.cols(); ++c)
+        for (Index r = 0; r < m.rows(); ++r) w.put(m(r, c));
     };
     // The mass matrix at rest (p = 0, frame at the origin, not turned): mass, first moment,
     // inertia, and the modal couplings and modal mass.

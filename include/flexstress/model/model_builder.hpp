@@ -26,7 +26,7 @@
 #include "flexstress/core/types.hpp"
 #include "flexstress/model/body_kernels.hpp"
 #include "flexstress/model/model.hpp"
-#include "flexstress/reduction/modal_body_data.hpp"
+#include "flexstress/reduction/modal_body.hpp"
 
 #ifndef FLEXSTRESS_MODE_COUNTS
 /// Mode counts whose body kernels are compiled with a fixed size (unrolled, vectorized); any

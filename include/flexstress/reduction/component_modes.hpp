@@ -34,10 +34,9 @@
 #include "flexstress/fe/rigid_body_modes.hpp"
 #include "flexstress/fe/static_solver.hpp"
 #include "flexstress/reduction/interface.hpp"
+#include "flexstress/reduction/reduction_method.hpp"
 
 namespace flexstress::reduction {
-
-enum class ReductionMethod : unsigned char { craig_bampton, craig_chang };
 
 /// How many dynamic modes (fixed-interface for Craig-Bampton, elastic free-free for Craig-Chang)
 /// a basis keeps: a count, or all below a cut-off frequency (whichever is set; count wins).

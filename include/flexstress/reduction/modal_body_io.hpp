@@ -23,7 +23,8 @@
 
 #include "flexstress/core/binary_io.hpp"
 #include "flexstress/core/status.hpp"
-#include "flexstress/reduction/modal_body_data.hpp"
+#include "flexstress/fe/mass_options.hpp"
+#include "flexstress/reduction/modal_body.hpp"
 
 namespace flexstress::reduction {
 

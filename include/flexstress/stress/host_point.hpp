@@ -18,7 +18,7 @@
 #include "flexstress/core/skew.hpp"
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
-#include "flexstress/reduction/modal_body_data.hpp"
+#include "flexstress/reduction/modal_body.hpp"
 
 namespace flexstress::stress {
 

@@ -131,6 +131,7 @@
     (const std::vector<Vector3d>&, const MatrixXd&) const)                                        \
   X(10, MatrixXd, stress::SubModel::inertia_fields, () const)                                     \
   X(10, VectorXd, stress::SubModel::solve, (const VectorXd&) const)                               \
+  X(10, VectorXd, stress::SubModel::load_response, (const VectorXd&) const)                       \
   X(10, Result<VectorXd>, stress::SubModel::stresses_by_resolve,                                  \
     (const std::vector<Vector3d>&, const VectorXd&) const)                                        \
   X(10, Result<MatrixXd>, stress::StressOutputs::rows, (const stress::SubModel&) const)           \

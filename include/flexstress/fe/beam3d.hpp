@@ -154,13 +154,7 @@ struct BeamGeometry {
 
   /// Interpolation matrices in *global* axes acting on the *global* element DOF vector.
   FLEXSTRESS_PRECOMPUTE
-  void interpolation(double xi, Matrix3x12d& n_u, Matrix3x12d& n_r) const {
-    Matrix3x12d lu, lr;
-    beam_local_interpolation(xi, length, lu, lr);
-    const Matrix12d t = beam_dof_rotation(axes);
-    n_u = axes.transpose() * lu * t;
-    n_r = axes.transpose() * lr * t;
-  }
+  void interpolation(double xi, Matrix3x12d& n_u, Matrix3x12d& n_r) const;
   /// Position on the undeformed centre line.
   Vector3d point(double xi) const { return x0 + xi * length * axes.row(0).transpose(); }
   /// Second moments of area tensor integral s s^T dA of the section, in global axes.
@@ -169,6 +163,15 @@ struct BeamGeometry {
     return s.iz * ey * ey.transpose() + s.iy * ez * ez.transpose();
   }
 };
+
+template <class>
+void BeamGeometry::interpolation(double xi, Matrix3x12d& n_u, Matrix3x12d& n_r) const {
+  Matrix3x12d lu, lr;
+  beam_local_interpolation(xi, length, lu, lr);
+  const Matrix12d t = beam_dof_rotation(axes);
+  n_u = axes.transpose() * lu * t;
+  n_r = axes.transpose() * lr * t;
+}
 
 /// Global-axes stiffness matrix of a beam element.
 FLEXSTRESS_PRECOMPUTE

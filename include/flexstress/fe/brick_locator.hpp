@@ -40,60 +40,7 @@ class BrickLocator {
   /// on faces are found despite round-off. Fails if the mesh has no bricks, does not validate
   /// or has a non-finite coordinate.
   FLEXSTRESS_PRECOMPUTE
-  static Result<BrickLocator> build(const Mesh& mesh, double tolerance = 1e-8) {
-    if (Status s = mesh.validate(); !s) return s.error();
-    const auto& hexes = mesh.hexes();
-    if (hexes.empty())
-      return make_error(ErrorCode::invalid_mesh, "brick locator: the mesh has no hex8 elements");
-    if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
-      return make_error(ErrorCode::invalid_argument, "brick locator: tolerance ", tolerance,
-                        " must be non-negative and finite");
-    BrickLocator loc;
-    loc.tolerance_ = tolerance;
-    const std::size_t ne = hexes.size();
-    loc.coords_.resize(ne);
-    loc.boxes_.resize(ne);
-    for (std::size_t e = 0; e < ne; ++e) {
-      loc.coords_[e] = hex8_coordinates(mesh, hexes[e]);
-      const Vector3d lo = loc.coords_[e].rowwise().minCoeff();
-      const Vector3d hi = loc.coords_[e].rowwise().maxCoeff();
-      // Inflate by the tolerance times the element size: a point on a face must pass.
-      const double pad = (hi - lo).norm() * std::max(tolerance, 1e-12);
-      loc.boxes_[e] =
-          Eigen::AlignedBox3d(lo - Vector3d::Constant(pad), hi + Vector3d::Constant(pad));
-      loc.bounds_.extend(loc.boxes_[e]);
-    }
-    // About one cell per brick, cubic cells, at most 256 per axis.
-    const Vector3d extent = loc.bounds_.sizes();
-    const double volume = std::max(extent.prod(), 1e-300);
-    const double cell = std::cbrt(volume / static_cast<double>(ne));
-    for (int a = 0; a < 3; ++a)
-      loc.dims_[a] = std::clamp(static_cast<int>(std::ceil(extent(a) / cell)), 1, 256);
-    const std::size_t ncells = static_cast<std::size_t>(loc.dims_[0]) *
-                               static_cast<std::size_t>(loc.dims_[1]) *
-                               static_cast<std::size_t>(loc.dims_[2]);
-    // Two passes (count, fill): compressed rows of brick ids per cell.
-    loc.cell_start_.assign(ncells + 1, 0);
-    for (int pass = 0; pass < 2; ++pass) {
-      std::vector<Index> fill(loc.cell_start_.begin(), loc.cell_start_.end() - 1);
-      if (pass == 1) loc.cell_items_.resize(static_cast<std::size_t>(loc.cell_start_.back()));
-      for (std::size_t e = 0; e < ne; ++e) {
-        const auto lo = loc.cell_of(loc.boxes_[e].min()), hi = loc.cell_of(loc.boxes_[e].max());
-        for (int i = lo[0]; i <= hi[0]; ++i)
-          for (int j = lo[1]; j <= hi[1]; ++j)
-            for (int k = lo[2]; k <= hi[2]; ++k) {
-              const std::size_t c = loc.cell_index(i, j, k);
-              if (pass == 0)
-                ++loc.cell_start_[c + 1];
-              else
-                loc.cell_items_[static_cast<std::size_t>(fill[c]++)] = static_cast<Index>(e);
-            }
-      }
-      if (pass == 0)
-        for (std::size_t c = 0; c < ncells; ++c) loc.cell_start_[c + 1] += loc.cell_start_[c];
-    }
-    return loc;
-  }
+  static Result<BrickLocator> build(const Mesh& mesh, double tolerance = 1e-8);
 
   /// The brick containing `p` and its natural coordinates (clamped to [-1, 1]). When several
   /// bricks contain p (a point on a shared face or node), the one in whose interior p lies
@@ -101,44 +48,7 @@ class BrickLocator {
   /// naming the point if it is not finite or lies outside every brick.
   /// (A template, like the precompute: including this header then compiles no Newton solve.)
   FLEXSTRESS_PRECOMPUTE
-  Result<BrickPoint> locate(const Vector3d& p) const {
-    if (!p.allFinite())
-      return make_error(ErrorCode::invalid_argument, "brick locator: point (", p.x(), ", ", p.y(),
-                        ", ", p.z(), ") is not finite");
-    BrickPoint best;
-    double best_excess = std::numeric_limits<double>::infinity();
-    if (bounds_.contains(p)) {
-      const auto c = cell_of(p);
-      const std::size_t cell = cell_index(c[0], c[1], c[2]);
-      for (Index k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-        const Index e = cell_items_[static_cast<std::size_t>(k)];
-        if (!boxes_[static_cast<std::size_t>(e)].contains(p)) continue;
-        auto xi = hex8_natural_coordinates(coords_[static_cast<std::size_t>(e)], p, e);
-        if (!xi || !hex8_contains(*xi, tolerance_)) continue;
-        const double excess = xi->cwiseAbs().maxCoeff();
-        if (excess < best_excess || (excess == best_excess && e < best.element)) {
-          best_excess = excess;
-          best.element = e;
-          best.xi = xi->cwiseMax(-1.0).cwiseMin(1.0);
-        }
-      }
-    }
-    if (best.element >= 0) return best;
-    // Not found: name the nearest brick (by centroid) to help the caller.
-    Index nearest = 0;
-    double nearest_d = std::numeric_limits<double>::infinity();
-    for (std::size_t e = 0; e < coords_.size(); ++e) {
-      const double d = (coords_[e].rowwise().mean() - p).norm();
-      if (d < nearest_d) {
-        nearest_d = d;
-        nearest = static_cast<Index>(e);
-      }
-    }
-    return make_error(ErrorCode::invalid_argument, "point (", p.x(), ", ", p.y(), ", ", p.z(),
-                      ") lies outside the brick mesh (no hex8 element contains it; the nearest "
-                      "element by centroid is ",
-                      nearest, " at distance ", nearest_d, ")");
-  }
+  Result<BrickPoint> locate(const Vector3d& p) const;
 
   /// Bounding box of all bricks (inflated by the tolerance).
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
@@ -170,5 +80,100 @@ class BrickLocator {
   std::vector<Index> cell_start_;
   std::vector<Index> cell_items_;
 };
+
+template <class>
+Result<BrickLocator> BrickLocator::build(const Mesh& mesh, double tolerance) {
+  if (Status s = mesh.validate(); !s) return s.error();
+  const auto& hexes = mesh.hexes();
+  if (hexes.empty())
+    return make_error(ErrorCode::invalid_mesh, "brick locator: the mesh has no hex8 elements");
+  if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
+    return make_error(ErrorCode::invalid_argument, "brick locator: tolerance ", tolerance,
+                      " must be non-negative and finite");
+  BrickLocator loc;
+  loc.tolerance_ = tolerance;
+  const std::size_t ne = hexes.size();
+  loc.coords_.resize(ne);
+  loc.boxes_.resize(ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    loc.coords_[e] = hex8_coordinates(mesh, hexes[e]);
+    const Vector3d lo = loc.coords_[e].rowwise().minCoeff();
+    const Vector3d hi = loc.coords_[e].rowwise().maxCoeff();
+    // Inflate by the tolerance times the element size: a point on a face must pass.
+    const double pad = (hi - lo).norm() * std::max(tolerance, 1e-12);
+    loc.boxes_[e] = Eigen::AlignedBox3d(lo - Vector3d::Constant(pad), hi + Vector3d::Constant(pad));
+    loc.bounds_.extend(loc.boxes_[e]);
+  }
+  // About one cell per brick, cubic cells, at most 256 per axis.
+  const Vector3d extent = loc.bounds_.sizes();
+  const double volume = std::max(extent.prod(), 1e-300);
+  const double cell = std::cbrt(volume / static_cast<double>(ne));
+  for (int a = 0; a < 3; ++a)
+    loc.dims_[a] = std::clamp(static_cast<int>(std::ceil(extent(a) / cell)), 1, 256);
+  const std::size_t ncells = static_cast<std::size_t>(loc.dims_[0]) *
+                             static_cast<std::size_t>(loc.dims_[1]) *
+                             static_cast<std::size_t>(loc.dims_[2]);
+  // Two passes (count, fill): compressed rows of brick ids per cell.
+  loc.cell_start_.assign(ncells + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<Index> fill(loc.cell_start_.begin(), loc.cell_start_.end() - 1);
+    if (pass == 1) loc.cell_items_.resize(static_cast<std::size_t>(loc.cell_start_.back()));
+    for (std::size_t e = 0; e < ne; ++e) {
+      const auto lo = loc.cell_of(loc.boxes_[e].min()), hi = loc.cell_of(loc.boxes_[e].max());
+      for (int i = lo[0]; i <= hi[0]; ++i)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+          for (int k = lo[2]; k <= hi[2]; ++k) {
+            const std::size_t c = loc.cell_index(i, j, k);
+            if (pass == 0)
+              ++loc.cell_start_[c + 1];
+            else
+              loc.cell_items_[static_cast<std::size_t>(fill[c]++)] = static_cast<Index>(e);
+          }
+    }
+    if (pass == 0)
+      for (std::size_t c = 0; c < ncells; ++c) loc.cell_start_[c + 1] += loc.cell_start_[c];
+  }
+  return loc;
+}
+
+template <class>
+Result<BrickPoint> BrickLocator::locate(const Vector3d& p) const {
+  if (!p.allFinite())
+    return make_error(ErrorCode::invalid_argument, "brick locator: point (", p.x(), ", ", p.y(),
+                      ", ", p.z(), ") is not finite");
+  BrickPoint best;
+  double best_excess = std::numeric_limits<double>::infinity();
+  if (bounds_.contains(p)) {
+    const auto c = cell_of(p);
+    const std::size_t cell = cell_index(c[0], c[1], c[2]);
+    for (Index k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+      const Index e = cell_items_[static_cast<std::size_t>(k)];
+      if (!boxes_[static_cast<std::size_t>(e)].contains(p)) continue;
+      auto xi = hex8_natural_coordinates(coords_[static_cast<std::size_t>(e)], p, e);
+      if (!xi || !hex8_contains(*xi, tolerance_)) continue;
+      const double excess = xi->cwiseAbs().maxCoeff();
+      if (excess < best_excess || (excess == best_excess && e < best.element)) {
+        best_excess = excess;
+        best.element = e;
+        best.xi = xi->cwiseMax(-1.0).cwiseMin(1.0);
+      }
+    }
+  }
+  if (best.element >= 0) return best;
+  // Not found: name the nearest brick (by centroid) to help the caller.
+  Index nearest = 0;
+  double nearest_d = std::numeric_limits<double>::infinity();
+  for (std::size_t e = 0; e < coords_.size(); ++e) {
+    const double d = (coords_[e].rowwise().mean() - p).norm();
+    if (d < nearest_d) {
+      nearest_d = d;
+      nearest = static_cast<Index>(e);
+    }
+  }
+  return make_error(ErrorCode::invalid_argument, "point (", p.x(), ", ", p.y(), ", ", p.z(),
+                    ") lies outside the brick mesh (no hex8 element contains it; the nearest "
+                    "element by centroid is ",
+                    nearest, " at distance ", nearest_d, ")");
+}
 
 }  // namespace flexstress::fe

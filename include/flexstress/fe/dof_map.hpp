@@ -21,46 +21,7 @@ class DofMap {
  public:
   /// Numbers the DOFs of a validated mesh. Fails if the mesh does not validate.
   FLEXSTRESS_PRECOMPUTE
-  static Result<DofMap> build(const Mesh& mesh) {
-    if (Status s = mesh.validate(); !s) return s.error();
-    const auto nn = static_cast<std::size_t>(mesh.num_nodes());
-    std::vector<int> count(nn, 0);
-    auto at_least = [&](Index node, int c) {
-      int& n = count[static_cast<std::size_t>(node)];
-      if (n < c) n = c;
-    };
-    for (const auto& b : mesh.beams())
-      for (Index n : b.nodes) at_least(n, 6);
-    for (const auto& h : mesh.hexes())
-      for (Index n : h.nodes) at_least(n, 3);
-    for (const auto& p : mesh.point_masses()) at_least(p.node, p.inertia.isZero(0.0) ? 3 : 6);
-    for (const auto& l : mesh.rigid_links()) {
-      at_least(l.master, 6);
-      for (Index s : l.slaves) at_least(s, 3);
-    }
-    for (const auto& l : mesh.averaging_links()) {
-      at_least(l.reference, 6);
-      for (Index f : l.face) at_least(f, 3);
-    }
-    for (const auto& m : mesh.matrix_elements())
-      for (Index n : m.nodes) at_least(n, 3);
-    for (Index n : mesh.rotation_nodes()) at_least(n, 6);
-
-    DofMap map;
-    map.first_.resize(nn);
-    map.count_ = count;
-    Index next = 0;
-    for (std::size_t i = 0; i < nn; ++i) {
-      map.first_[i] = next;
-      for (int c = 0; c < count[i]; ++c) {
-        map.node_of_.push_back(static_cast<Index>(i));
-        map.component_of_.push_back(c);
-      }
-      next += count[i];
-    }
-    map.size_ = next;
-    return map;
-  }
+  static Result<DofMap> build(const Mesh& mesh);
 
   /// Total number of nodal DOFs.
   Index size() const { return size_; }
@@ -89,5 +50,47 @@ class DofMap {
   std::vector<int> component_of_;
   Index size_ = 0;
 };
+
+template <class>
+Result<DofMap> DofMap::build(const Mesh& mesh) {
+  if (Status s = mesh.validate(); !s) return s.error();
+  const auto nn = static_cast<std::size_t>(mesh.num_nodes());
+  std::vector<int> count(nn, 0);
+  auto at_least = [&](Index node, int c) {
+    int& n = count[static_cast<std::size_t>(node)];
+    if (n < c) n = c;
+  };
+  for (const auto& b : mesh.beams())
+    for (Index n : b.nodes) at_least(n, 6);
+  for (const auto& h : mesh.hexes())
+    for (Index n : h.nodes) at_least(n, 3);
+  for (const auto& p : mesh.point_masses()) at_least(p.node, p.inertia.isZero(0.0) ? 3 : 6);
+  for (const auto& l : mesh.rigid_links()) {
+    at_least(l.master, 6);
+    for (Index s : l.slaves) at_least(s, 3);
+  }
+  for (const auto& l : mesh.averaging_links()) {
+    at_least(l.reference, 6);
+    for (Index f : l.face) at_least(f, 3);
+  }
+  for (const auto& m : mesh.matrix_elements())
+    for (Index n : m.nodes) at_least(n, 3);
+  for (Index n : mesh.rotation_nodes()) at_least(n, 6);
+
+  DofMap map;
+  map.first_.resize(nn);
+  map.count_ = count;
+  Index next = 0;
+  for (std::size_t i = 0; i < nn; ++i) {
+    map.first_[i] = next;
+    for (int c = 0; c < count[i]; ++c) {
+      map.node_of_.push_back(static_cast<Index>(i));
+      map.component_of_.push_back(c);
+    }
+    next += count[i];
+  }
+  map.size_ = next;
+  return map;
+}
 
 }  // namespace flexstress::fe

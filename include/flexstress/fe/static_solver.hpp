@@ -79,50 +79,18 @@ class StaticSolver {
   /// explanation if it is singular or indefinite. The solver keeps a reference to `model`,
   /// which must outlive it.
   FLEXSTRESS_PRECOMPUTE
-  static Result<StaticSolver> factorize(const Mesh& mesh, const AssembledModel& model) {
-    StaticSolver s;
-    s.model_ = &model;
-    const SparseMatrixd& k = model.stiffness;
-    if (k.rows() == 0)
-      return make_error(ErrorCode::invalid_argument, "the model has no free DOFs to solve for");
-    // A DOF with exactly zero stiffness is a mechanism the factorization may not notice.
-    const VectorXd diag = k.diagonal();
-    for (Index i = 0; i < diag.size(); ++i)
-      if (!(diag(i) > 0.0)) return detail::explain_singular_stiffness(mesh, model, i);
-    s.ldlt_ = std::make_unique<Eigen::SimplicialLDLT<SparseMatrixd>>();
-    Eigen::SimplicialLDLT<SparseMatrixd>& ldlt = *s.ldlt_;
-    ldlt.compute(k);
-    if (ldlt.info() != Eigen::Success) return detail::explain_singular_stiffness(mesh, model, -1);
-    // Pivots relative to the diagonal they came from: a pivot lost to cancellation means a
-    // (near) singular matrix; a negative one means K is not positive semi-definite.
-    const VectorXd d = ldlt.vectorD();
-    // P A P^T = L D L^T: permuted position k holds original DOF P^-1(k).
-    const Eigen::PermutationMatrix<Eigen::Dynamic> pinv = ldlt.permutationP().inverse();
-    for (Index i = 0; i < d.size(); ++i) {
-      const Index original = pinv.indices()(i);
-      if (!(d(i) > 1e-11 * diag(original)))
-        return detail::explain_singular_stiffness(mesh, model, original);
-    }
-    return s;
-  }
+  static Result<StaticSolver> factorize(const Mesh& mesh, const AssembledModel& model);
 
   /// Free-DOF displacements for a free-DOF load.
   FLEXSTRESS_PRECOMPUTE
-  VectorXd solve_free(const VectorXd& f_free) const { return ldlt_->solve(f_free); }
+  VectorXd solve_free(const VectorXd& f_free) const;
 
   /// All-DOF displacements for an all-DOF load and prescribed values.
   FLEXSTRESS_PRECOMPUTE
-  VectorXd solve(const VectorXd& f_all, const VectorXd& prescribed_values) const {
-    const auto& ct = model_->constraints;
-    const VectorXd rhs =
-        ct.free_to_all().transpose() * f_all - model_->stiffness_prescribed * prescribed_values;
-    return ct.expand(ldlt_->solve(rhs), prescribed_values);
-  }
+  VectorXd solve(const VectorXd& f_all, const VectorXd& prescribed_values) const;
   /// All-DOF displacements with the prescribed values of the boundary conditions.
   FLEXSTRESS_PRECOMPUTE
-  VectorXd solve(const VectorXd& f_all) const {
-    return solve(f_all, model_->constraints.prescribed_values());
-  }
+  VectorXd solve(const VectorXd& f_all) const;
 
   const AssembledModel& model() const { return *model_; }
 
@@ -130,5 +98,51 @@ class StaticSolver {
   const AssembledModel* model_ = nullptr;
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrixd>> ldlt_;  // Eigen solvers do not move
 };
+
+template <class>
+Result<StaticSolver> StaticSolver::factorize(const Mesh& mesh, const AssembledModel& model) {
+  StaticSolver s;
+  s.model_ = &model;
+  const SparseMatrixd& k = model.stiffness;
+  if (k.rows() == 0)
+    return make_error(ErrorCode::invalid_argument, "the model has no free DOFs to solve for");
+  // A DOF with exactly zero stiffness is a mechanism the factorization may not notice.
+  const VectorXd diag = k.diagonal();
+  for (Index i = 0; i < diag.size(); ++i)
+    if (!(diag(i) > 0.0)) return detail::explain_singular_stiffness(mesh, model, i);
+  s.ldlt_ = std::make_unique<Eigen::SimplicialLDLT<SparseMatrixd>>();
+  Eigen::SimplicialLDLT<SparseMatrixd>& ldlt = *s.ldlt_;
+  ldlt.compute(k);
+  if (ldlt.info() != Eigen::Success) return detail::explain_singular_stiffness(mesh, model, -1);
+  // Pivots relative to the diagonal they came from: a pivot lost to cancellation means a
+  // (near) singular matrix; a negative one means K is not positive semi-definite.
+  const VectorXd d = ldlt.vectorD();
+  // P A P^T = L D L^T: permuted position k holds original DOF P^-1(k).
+  const Eigen::PermutationMatrix<Eigen::Dynamic> pinv = ldlt.permutationP().inverse();
+  for (Index i = 0; i < d.size(); ++i) {
+    const Index original = pinv.indices()(i);
+    if (!(d(i) > 1e-11 * diag(original)))
+      return detail::explain_singular_stiffness(mesh, model, original);
+  }
+  return s;
+}
+
+template <class>
+VectorXd StaticSolver::solve_free(const VectorXd& f_free) const {
+  return ldlt_->solve(f_free);
+}
+
+template <class>
+VectorXd StaticSolver::solve(const VectorXd& f_all, const VectorXd& prescribed_values) const {
+  const auto& ct = model_->constraints;
+  const VectorXd rhs =
+      ct.free_to_all().transpose() * f_all - model_->stiffness_prescribed * prescribed_values;
+  return ct.expand(ldlt_->solve(rhs), prescribed_values);
+}
+
+template <class>
+VectorXd StaticSolver::solve(const VectorXd& f_all) const {
+  return solve(f_all, model_->constraints.prescribed_values());
+}
 
 }  // namespace flexstress::fe

@@ -47,46 +47,13 @@ class ModelBuilder {
   /// A rigid body: mass, centre of mass and inertia about the centre of mass (body frame), its
   /// frame starting at `position` with `orientation`.
   BodyId add_rigid_body(const std::string& name, Scalar mass, const Vec3<Scalar>& center_of_mass,
-                        const Mat3<Scalar>& inertia_about_com) {
-    Pending p;
-    p.body.name = name;
-    if (!(mass > Scalar(0)) || !center_of_mass.allFinite() || !inertia_about_com.allFinite())
-      fail(ErrorCode::invalid_argument, "body '", name,
-           "': a rigid body needs a positive mass and a finite centre of mass and inertia");
-    std::tie(p.holder, p.body.kernels) = detail::make_holder<Scalar, 0>(
-        BodyModel<Scalar, 0>::rigid(mass, center_of_mass, inertia_about_com));
-    return push(std::move(p));
-  }
+                        const Mat3<Scalar>& inertia_about_com);
 
   /// A flexible body from reduced FE data keeping its lowest `modes` deformation modes (any
   /// count the data has, up to max_runtime_modes). Modal damping follows the data's damping
   /// ratios (set_damping_ratio changes them).
   BodyId add_flexible_body(const std::string& name, const reduction::ModalBodyData& data,
-                           int modes) {
-    Pending p;
-    p.body.name = name;
-    if (modes < 0 || modes > data.num_modes) {
-      fail(ErrorCode::size_mismatch, "body '", name, "': ", modes, " modes asked, the data has ",
-           data.num_modes);
-      modes = 0;
-    }
-    bool done = false;
-    Error error;
-    error.message.clear();
-    if (!bounded_kernels_)
-      adopt_compiled(data, modes, done, p, error,
-                     std::integer_sequence<int, FLEXSTRESS_MODE_COUNTS>{});
-    if (!done) {
-      auto b = BodyModel<Scalar, Eigen::Dynamic>::from_modal_data(data, modes);
-      if (b)
-        std::tie(p.holder, p.body.kernels) =
-            detail::make_holder<Scalar, Eigen::Dynamic>(std::move(*b));
-      else
-        error = b.error();
-    }
-    if (!error.message.empty()) fail(error.code, "body '", name, "': ", error.message);
-    return push(std::move(p));
-  }
+                           int modes);
 
   /// Geometric stiffening of a flexible body under its own inertial and gravity loads: K_G
   /// from modal geometric stiffness per unit load case (reduction/modal_geometric_stiffness.hpp;
@@ -595,5 +562,51 @@ class ModelBuilder {
   ImplicitSettings<Scalar> settings_;
   Error first_error_{ErrorCode::invalid_argument, std::string()};
 };
+
+// Defined outside the class, so that they are not inline: a unit that includes model/compiled.hpp
+// (FLEXSTRESS_COMPILED) then takes them from flexstress::compiled instead of instantiating the
+// body kernels of every mode count (push) and the bounded body's setup again (GCC instantiates
+// an inline member of an `extern template` class where it is used, to be able to inline it).
+template <class Scalar>
+BodyId ModelBuilder<Scalar>::add_rigid_body(const std::string& name, Scalar mass,
+                                            const Vec3<Scalar>& center_of_mass,
+                                            const Mat3<Scalar>& inertia_about_com) {
+  Pending p;
+  p.body.name = name;
+  if (!(mass > Scalar(0)) || !center_of_mass.allFinite() || !inertia_about_com.allFinite())
+    fail(ErrorCode::invalid_argument, "body '", name,
+         "': a rigid body needs a positive mass and a finite centre of mass and inertia");
+  std::tie(p.holder, p.body.kernels) = detail::make_holder<Scalar, 0>(
+      BodyModel<Scalar, 0>::rigid(mass, center_of_mass, inertia_about_com));
+  return push(std::move(p));
+}
+
+template <class Scalar>
+BodyId ModelBuilder<Scalar>::add_flexible_body(const std::string& name,
+                                               const reduction::ModalBodyData& data, int modes) {
+  Pending p;
+  p.body.name = name;
+  if (modes < 0 || modes > data.num_modes) {
+    fail(ErrorCode::size_mismatch, "body '", name, "': ", modes, " modes asked, the data has ",
+         data.num_modes);
+    modes = 0;
+  }
+  bool done = false;
+  Error error;
+  error.message.clear();
+  if (!bounded_kernels_)
+    adopt_compiled(data, modes, done, p, error,
+                   std::integer_sequence<int, FLEXSTRESS_MODE_COUNTS>{});
+  if (!done) {
+    auto b = BodyModel<Scalar, Eigen::Dynamic>::from_modal_data(data, modes);
+    if (b)
+      std::tie(p.holder, p.body.kernels) =
+          detail::make_holder<Scalar, Eigen::Dynamic>(std::move(*b));
+    else
+      error = b.error();
+  }
+  if (!error.message.empty()) fail(error.code, "body '", name, "': ", error.message);
+  return push(std::move(p));
+}
 
 }  // namespace flexstress

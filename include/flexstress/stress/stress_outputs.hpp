@@ -94,25 +94,11 @@ class StressOutputs {
   /// R (outputs x 6 k) for `sub`. Fails, naming the point, for read-out points outside the
   /// sub-model's bricks.
   FLEXSTRESS_PRECOMPUTE
-  Result<MatrixXd> rows(const SubModel& sub) const { return rows(sub, sub.unit_displacements()); }
+  Result<MatrixXd> rows(const SubModel& sub) const;
   /// The outputs of arbitrary all-DOF displacement fields of `sub` (outputs x fields.cols()),
   /// e.g. its inertia_fields().
   FLEXSTRESS_PRECOMPUTE
-  Result<MatrixXd> rows(const SubModel& sub, const MatrixXd& fields) const {
-    auto hs = sub.stress_influence(stress_points_, fields);
-    if (!hs) return make_error(hs.error().code, "stress read-out: ", hs.error().message);
-    auto hu = sub.displacement_influence(displacement_points_, fields);
-    if (!hu) return make_error(hu.error().code, "strain gauge end: ", hu.error().message);
-    MatrixXd r = MatrixXd::Zero(num_outputs(), fields.cols());
-    for (Index i = 0; i < num_outputs(); ++i)
-      for (const Term& t : rows_[static_cast<std::size_t>(i)]) {
-        if (t.stress_point >= 0)
-          r.row(i) += t.weights.transpose() * hs->middleRows<6>(6 * t.stress_point);
-        else
-          r.row(i) += t.weights.head<3>().transpose() * hu->middleRows<3>(3 * t.displacement_point);
-      }
-    return r;
-  }
+  Result<MatrixXd> rows(const SubModel& sub, const MatrixXd& fields) const;
 
  private:
   struct Term {
@@ -136,5 +122,27 @@ class StressOutputs {
   std::vector<std::vector<Term>> rows_;
   std::vector<std::string> labels_;
 };
+
+template <class>
+Result<MatrixXd> StressOutputs::rows(const SubModel& sub) const {
+  return rows(sub, sub.unit_displacements());
+}
+
+template <class>
+Result<MatrixXd> StressOutputs::rows(const SubModel& sub, const MatrixXd& fields) const {
+  auto hs = sub.stress_influence(stress_points_, fields);
+  if (!hs) return make_error(hs.error().code, "stress read-out: ", hs.error().message);
+  auto hu = sub.displacement_influence(displacement_points_, fields);
+  if (!hu) return make_error(hu.error().code, "strain gauge end: ", hu.error().message);
+  MatrixXd r = MatrixXd::Zero(num_outputs(), fields.cols());
+  for (Index i = 0; i < num_outputs(); ++i)
+    for (const Term& t : rows_[static_cast<std::size_t>(i)]) {
+      if (t.stress_point >= 0)
+        r.row(i) += t.weights.transpose() * hs->middleRows<6>(6 * t.stress_point);
+      else
+        r.row(i) += t.weights.head<3>().transpose() * hu->middleRows<3>(3 * t.displacement_point);
+    }
+  return r;
+}
 
 }  // namespace flexstress::stress

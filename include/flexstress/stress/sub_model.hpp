@@ -53,73 +53,7 @@ class SubModel {
   /// all force-driven; a sub-model the attachments leave free to move otherwise gets the static
   /// solver's explanation.
   FLEXSTRESS_PRECOMPUTE
-  static Result<SubModel> build(fe::Mesh mesh, const std::vector<SubModelAttachment>& attachments) {
-    if (attachments.empty())
-      return make_error(ErrorCode::invalid_argument, "sub-model: no attachments given");
-    if (mesh.hexes().empty())
-      return make_error(ErrorCode::invalid_argument, "sub-model: the mesh has no bricks");
-    std::vector<int> owner(static_cast<std::size_t>(mesh.num_nodes()), -1);
-    for (std::size_t a = 0; a < attachments.size(); ++a) {
-      const auto& att = attachments[a];
-      if (att.face_nodes.empty())
-        return make_error(ErrorCode::invalid_argument, "sub-model attachment ", a,
-                          ": the face node set is empty");
-      if (!att.master.allFinite())
-        return make_error(ErrorCode::invalid_argument, "sub-model attachment ", a,
-                          ": the master point is not finite");
-      for (Index n : att.face_nodes) {
-        if (n < 0 || n >= mesh.num_nodes())
-          return make_error(ErrorCode::invalid_argument, "sub-model attachment ", a, ": face node ",
-                            n, " does not exist (the mesh has ", mesh.num_nodes(), " nodes)");
-        int& o = owner[static_cast<std::size_t>(n)];
-        if (o >= 0)
-          return make_error(
-              ErrorCode::invalid_argument, "sub-model attachment ", a, ": face node ", n,
-              o == static_cast<int>(a) ? " is listed twice" : " also belongs to attachment ",
-              o == static_cast<int>(a) ? std::string() : std::to_string(o),
-              " (face sets must not overlap)");
-        o = static_cast<int>(a);
-      }
-    }
-    if (std::none_of(attachments.begin(), attachments.end(), [](const SubModelAttachment& a) {
-          return a.drive == AttachmentDrive::displacement;
-        }))
-      return make_error(ErrorCode::invalid_argument, "sub-model: all ", attachments.size(),
-                        " attachments are force-driven; at least one must be displacement-driven "
-                        "to hold the sub-model (the others' loads are reacted there)");
-    SubModel s;
-    fe::BoundaryConditions bc;
-    for (const auto& att : attachments) {
-      const Index m = mesh.add_node(att.master);
-      mesh.add_rigid_link(m, att.face_nodes);
-      s.masters_.push_back(m);
-      s.drives_.push_back(att.drive);
-      // Components 0..5 in order: the prescribed values are the displacement-driven blocks of
-      // the boundary vector, in attachment order.
-      if (att.drive == AttachmentDrive::displacement) bc.clamp(m);
-    }
-    s.mesh_ = std::make_unique<fe::Mesh>(std::move(mesh));
-    auto model = fe::assemble(*s.mesh_, bc);
-    if (!model) return model.error();
-    s.model_ = std::make_unique<fe::AssembledModel>(std::move(*model));
-    auto solver = fe::StaticSolver::factorize(*s.mesh_, *s.model_);
-    if (!solver)
-      return make_error(solver.error().code, "sub-model with ", attachments.size(),
-                        " attachments: ", solver.error().message);
-    s.solver_ = std::make_unique<fe::StaticSolver>(std::move(*solver));
-    const Index nb = 6 * static_cast<Index>(attachments.size());
-    const Index nd = s.model_->dofs.size();
-    s.unit_ = MatrixXd::Zero(nd, nb);
-    for (Index j = 0; j < nb; ++j) {
-      VectorXd v = VectorXd::Zero(nb);
-      v(j) = 1.0;
-      s.unit_.col(j) = s.solve(v);
-    }
-    auto locator = fe::BrickLocator::build(*s.mesh_);
-    if (!locator) return locator.error();
-    s.locator_ = std::make_unique<fe::BrickLocator>(std::move(*locator));
-    return s;
-  }
+  static Result<SubModel> build(fe::Mesh mesh, const std::vector<SubModelAttachment>& attachments);
 
   Index num_attachments() const { return static_cast<Index>(masters_.size()); }
   /// Length of the boundary vector: 6 values (displacements and rotations, or force and moment)
@@ -137,41 +71,20 @@ class SubModel {
   /// H (6 P x 6 k): Voigt stresses at the points per unit boundary DOF. Fails, naming the point,
   /// for a point outside the brick mesh.
   FLEXSTRESS_PRECOMPUTE
-  Result<MatrixXd> stress_influence(const std::vector<Vector3d>& points) const {
-    return stress_influence(points, unit_);
-  }
+  Result<MatrixXd> stress_influence(const std::vector<Vector3d>& points) const;
   /// The same for any all-DOF displacement fields (columns), e.g. inertia_fields().
   FLEXSTRESS_PRECOMPUTE
   Result<MatrixXd> stress_influence(const std::vector<Vector3d>& points,
-                                    const MatrixXd& fields) const {
-    auto s = fe::point_stress_operator(*mesh_, model_->dofs, *locator_, points);
-    if (!s) return s.error();
-    return MatrixXd(*s * fields);
-  }
+                                    const MatrixXd& fields) const;
 
   /// (3 P x 6 k): displacements at the points per unit boundary DOF (trilinear interpolation
   /// in the containing brick).
   FLEXSTRESS_PRECOMPUTE
-  Result<MatrixXd> displacement_influence(const std::vector<Vector3d>& points) const {
-    return displacement_influence(points, unit_);
-  }
+  Result<MatrixXd> displacement_influence(const std::vector<Vector3d>& points) const;
   /// The same for any all-DOF displacement fields (columns).
   FLEXSTRESS_PRECOMPUTE
   Result<MatrixXd> displacement_influence(const std::vector<Vector3d>& points,
-                                          const MatrixXd& fields) const {
-    MatrixXd out = MatrixXd::Zero(3 * static_cast<Index>(points.size()), fields.cols());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      auto bp = locator_->locate(points[i]);
-      if (!bp) return bp.error();
-      const auto& h = mesh_->hexes()[static_cast<std::size_t>(bp->element)];
-      const Eigen::Matrix<double, 8, 1> n = fe::hex8::shape(bp->xi);
-      for (int k = 0; k < 8; ++k)
-        for (int c = 0; c < 3; ++c)
-          out.row(3 * static_cast<Index>(i) + c) +=
-              n(k) * fields.row(model_->dofs.dof(h.nodes[static_cast<std::size_t>(k)], c));
-    }
-    return out;
-  }
+                                          const MatrixXd& fields) const;
 
   /// Quasi-static response to the sub-model's own inertia with the boundary held: all-DOF
   /// displacements for the body force -rho a(x), a(x) the acceleration of the material point at
@@ -193,20 +106,13 @@ class SubModel {
   /// to the mesh by links) with the boundary held: all-DOF displacements. With the masters held,
   /// the model need not be in equilibrium; the masters take the reactions.
   FLEXSTRESS_PRECOMPUTE
-  VectorXd load_response(const VectorXd& load) const {
-    return solver_->solve(load, VectorXd::Zero(num_prescribed()));
-  }
+  VectorXd load_response(const VectorXd& load) const;
 
   /// The responses to the 12 unit inertia coordinates of a rigid host-frame motion (dofs x 12):
   /// a(x) = a_O + alpha x x + omega x (omega x x) is linear in
   /// g = [a_O (3); alpha (3); wx^2, wy^2, wz^2, wx wy, wy wz, wz wx] (see sub_model_inertia.hpp).
   FLEXSTRESS_PRECOMPUTE
-  MatrixXd inertia_fields() const {
-    MatrixXd out(model_->dofs.size(), 12);
-    for (int k = 0; k < 12; ++k)
-      out.col(k) = inertia_response([k](const Vector3d& x) { return unit_inertia_field(k, x); });
-    return out;
-  }
+  MatrixXd inertia_fields() const;
 
   /// Acceleration at x for unit inertia coordinate k (0-2 translation, 3-5 angular
   /// acceleration, 6-11 the products of angular velocity components; omega x (omega x x) =
@@ -232,34 +138,12 @@ class SubModel {
   /// the factorization (what the influence matrix replaces). The blocks of force-driven
   /// attachments are loads on their masters.
   FLEXSTRESS_PRECOMPUTE
-  VectorXd solve(const VectorXd& u_b) const {
-    VectorXd load = VectorXd::Zero(model_->dofs.size());
-    VectorXd prescribed(num_prescribed());
-    Index next = 0;
-    for (Index a = 0; a < num_attachments(); ++a) {
-      if (drive(a) == AttachmentDrive::displacement) {
-        prescribed.segment<6>(next) = u_b.segment<6>(6 * a);
-        next += 6;
-      } else {
-        for (int c = 0; c < 6; ++c) load(model_->dofs.dof(master_node(a), c)) = u_b(6 * a + c);
-      }
-    }
-    return solver_->solve(load, prescribed);
-  }
+  VectorXd solve(const VectorXd& u_b) const;
 
   /// Reference path for stresses at points: re-solve, then recover (allocates; not per step).
   FLEXSTRESS_PRECOMPUTE
   Result<VectorXd> stresses_by_resolve(const std::vector<Vector3d>& points,
-                                       const VectorXd& u_b) const {
-    const VectorXd u = solve(u_b);
-    VectorXd out(6 * static_cast<Index>(points.size()));
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      auto s = fe::stress_at_point(*mesh_, model_->dofs, *locator_, u, points[i]);
-      if (!s) return s.error();
-      out.segment<6>(6 * static_cast<Index>(i)) = *s;
-    }
-    return out;
-  }
+                                       const VectorXd& u_b) const;
 
  private:
   SubModel() = default;
@@ -277,5 +161,152 @@ class SubModel {
   std::vector<AttachmentDrive> drives_;
   MatrixXd unit_;
 };
+
+template <class>
+Result<SubModel> SubModel::build(fe::Mesh mesh,
+                                 const std::vector<SubModelAttachment>& attachments) {
+  if (attachments.empty())
+    return make_error(ErrorCode::invalid_argument, "sub-model: no attachments given");
+  if (mesh.hexes().empty())
+    return make_error(ErrorCode::invalid_argument, "sub-model: the mesh has no bricks");
+  std::vector<int> owner(static_cast<std::size_t>(mesh.num_nodes()), -1);
+  for (std::size_t a = 0; a < attachments.size(); ++a) {
+    const auto& att = attachments[a];
+    if (att.face_nodes.empty())
+      return make_error(ErrorCode::invalid_argument, "sub-model attachment ", a,
+                        ": the face node set is empty");
+    if (!att.master.allFinite())
+      return make_error(ErrorCode::invalid_argument, "sub-model attachment ", a,
+                        ": the master point is not finite");
+    for (Index n : att.face_nodes) {
+      if (n < 0 || n >= mesh.num_nodes())
+        return make_error(ErrorCode::invalid_argument, "sub-model attachment ", a, ": face node ",
+                          n, " does not exist (the mesh has ", mesh.num_nodes(), " nodes)");
+      int& o = owner[static_cast<std::size_t>(n)];
+      if (o >= 0)
+        return make_error(
+            ErrorCode::invalid_argument, "sub-model attachment ", a, ": face node ", n,
+            o == static_cast<int>(a) ? " is listed twice" : " also belongs to attachment ",
+            o == static_cast<int>(a) ? std::string() : std::to_string(o),
+            " (face sets must not overlap)");
+      o = static_cast<int>(a);
+    }
+  }
+  if (std::none_of(attachments.begin(), attachments.end(), [](const SubModelAttachment& a) {
+        return a.drive == AttachmentDrive::displacement;
+      }))
+    return make_error(ErrorCode::invalid_argument, "sub-model: all ", attachments.size(),
+                      " attachments are force-driven; at least one must be displacement-driven "
+                      "to hold the sub-model (the others' loads are reacted there)");
+  SubModel s;
+  fe::BoundaryConditions bc;
+  for (const auto& att : attachments) {
+    const Index m = mesh.add_node(att.master);
+    mesh.add_rigid_link(m, att.face_nodes);
+    s.masters_.push_back(m);
+    s.drives_.push_back(att.drive);
+    // Components 0..5 in order: the prescribed values are the displacement-driven blocks of
+    // the boundary vector, in attachment order.
+    if (att.drive == AttachmentDrive::displacement) bc.clamp(m);
+  }
+  s.mesh_ = std::make_unique<fe::Mesh>(std::move(mesh));
+  auto model = fe::assemble(*s.mesh_, bc);
+  if (!model) return model.error();
+  s.model_ = std::make_unique<fe::AssembledModel>(std::move(*model));
+  auto solver = fe::StaticSolver::factorize(*s.mesh_, *s.model_);
+  if (!solver)
+    return make_error(solver.error().code, "sub-model with ", attachments.size(),
+                      " attachments: ", solver.error().message);
+  s.solver_ = std::make_unique<fe::StaticSolver>(std::move(*solver));
+  const Index nb = 6 * static_cast<Index>(attachments.size());
+  const Index nd = s.model_->dofs.size();
+  s.unit_ = MatrixXd::Zero(nd, nb);
+  for (Index j = 0; j < nb; ++j) {
+    VectorXd v = VectorXd::Zero(nb);
+    v(j) = 1.0;
+    s.unit_.col(j) = s.solve(v);
+  }
+  auto locator = fe::BrickLocator::build(*s.mesh_);
+  if (!locator) return locator.error();
+  s.locator_ = std::make_unique<fe::BrickLocator>(std::move(*locator));
+  return s;
+}
+
+template <class>
+Result<MatrixXd> SubModel::stress_influence(const std::vector<Vector3d>& points) const {
+  return stress_influence(points, unit_);
+}
+
+template <class>
+Result<MatrixXd> SubModel::stress_influence(const std::vector<Vector3d>& points,
+                                            const MatrixXd& fields) const {
+  auto s = fe::point_stress_operator(*mesh_, model_->dofs, *locator_, points);
+  if (!s) return s.error();
+  return MatrixXd(*s * fields);
+}
+
+template <class>
+Result<MatrixXd> SubModel::displacement_influence(const std::vector<Vector3d>& points) const {
+  return displacement_influence(points, unit_);
+}
+
+template <class>
+Result<MatrixXd> SubModel::displacement_influence(const std::vector<Vector3d>& points,
+                                                  const MatrixXd& fields) const {
+  MatrixXd out = MatrixXd::Zero(3 * static_cast<Index>(points.size()), fields.cols());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    auto bp = locator_->locate(points[i]);
+    if (!bp) return bp.error();
+    const auto& h = mesh_->hexes()[static_cast<std::size_t>(bp->element)];
+    const Eigen::Matrix<double, 8, 1> n = fe::hex8::shape(bp->xi);
+    for (int k = 0; k < 8; ++k)
+      for (int c = 0; c < 3; ++c)
+        out.row(3 * static_cast<Index>(i) + c) +=
+            n(k) * fields.row(model_->dofs.dof(h.nodes[static_cast<std::size_t>(k)], c));
+  }
+  return out;
+}
+
+template <class>
+VectorXd SubModel::load_response(const VectorXd& load) const {
+  return solver_->solve(load, VectorXd::Zero(num_prescribed()));
+}
+
+template <class>
+MatrixXd SubModel::inertia_fields() const {
+  MatrixXd out(model_->dofs.size(), 12);
+  for (int k = 0; k < 12; ++k)
+    out.col(k) = inertia_response([k](const Vector3d& x) { return unit_inertia_field(k, x); });
+  return out;
+}
+
+template <class>
+VectorXd SubModel::solve(const VectorXd& u_b) const {
+  VectorXd load = VectorXd::Zero(model_->dofs.size());
+  VectorXd prescribed(num_prescribed());
+  Index next = 0;
+  for (Index a = 0; a < num_attachments(); ++a) {
+    if (drive(a) == AttachmentDrive::displacement) {
+      prescribed.segment<6>(next) = u_b.segment<6>(6 * a);
+      next += 6;
+    } else {
+      for (int c = 0; c < 6; ++c) load(model_->dofs.dof(master_node(a), c)) = u_b(6 * a + c);
+    }
+  }
+  return solver_->solve(load, prescribed);
+}
+
+template <class>
+Result<VectorXd> SubModel::stresses_by_resolve(const std::vector<Vector3d>& points,
+                                               const VectorXd& u_b) const {
+  const VectorXd u = solve(u_b);
+  VectorXd out(6 * static_cast<Index>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    auto s = fe::stress_at_point(*mesh_, model_->dofs, *locator_, u, points[i]);
+    if (!s) return s.error();
+    out.segment<6>(6 * static_cast<Index>(i)) = *s;
+  }
+  return out;
+}
 
 }  // namespace flexstress::stress

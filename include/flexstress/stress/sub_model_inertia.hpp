@@ -45,13 +45,7 @@ class SubModelInertia {
 
   /// G for the outputs (same rows, same order as outputs.rows(sub)).
   FLEXSTRESS_PRECOMPUTE
-  static Result<SubModelInertia> build(const SubModel& sub, const StressOutputs& outputs) {
-    auto rows = outputs.rows(sub, sub.inertia_fields());
-    if (!rows) return rows.error();
-    SubModelInertia m;
-    m.rows_ = rows->template cast<Scalar>();
-    return m;
-  }
+  static Result<SubModelInertia> build(const SubModel& sub, const StressOutputs& outputs);
 
   Index num_outputs() const { return rows_.rows(); }
   const Rows& rows() const { return rows_; }
@@ -64,5 +58,16 @@ class SubModelInertia {
  private:
   Rows rows_;
 };
+
+template <class Scalar>
+template <class>
+Result<SubModelInertia<Scalar>> SubModelInertia<Scalar>::build(const SubModel& sub,
+                                                               const StressOutputs& outputs) {
+  auto rows = outputs.rows(sub, sub.inertia_fields());
+  if (!rows) return rows.error();
+  SubModelInertia m;
+  m.rows_ = rows->template cast<Scalar>();
+  return m;
+}
 
 }  // namespace flexstress::stress

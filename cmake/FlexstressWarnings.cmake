@@ -30,7 +30,7 @@ endif()
 # examples and benchmarks (see include/flexstress/precompute_instances.hpp). Without this each
 # translation unit that calls the precompute spends tens of seconds instantiating it again.
 # In parts (include/flexstress/precompute_instances.hpp), compiled in parallel: no job over
-# 1.5 GB with GCC, the default compiler (-O3: 0.99 to 1.31 GB each; the whole in one unit took
+# 1.5 GB with GCC, the default compiler (-O3: 0.72 to 1.31 GB each; the whole in one unit took
 # 3.0 GB), at about three times the total compile time of one unit (every part parses the
 # headers). Clang compiles the one unit in 1.6 GB and half of GCC's time, so it keeps it.
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")

@@ -36,27 +36,7 @@ class ModalStressModes {
   /// S for every node of the sub-model's bricks (spider nodes excluded), from the first NModes
   /// columns of the boundary modes (6 k x >= NModes).
   FLEXSTRESS_PRECOMPUTE
-  static Result<ModalStressModes> build(const SubModel& sub, const MatrixXd& boundary_modes) {
-    if (boundary_modes.rows() != sub.num_boundary_dofs())
-      return make_error(ErrorCode::size_mismatch, "modal stress modes: the sub-model has ",
-                        sub.num_boundary_dofs(), " boundary DOFs, the boundary modes ",
-                        boundary_modes.rows());
-    if (boundary_modes.cols() < NModes)
-      return make_error(ErrorCode::size_mismatch, "modal stress modes: the host body has ",
-                        boundary_modes.cols(), " modes, the template asks for ", NModes);
-    const fe::Mesh& mesh = sub.mesh();
-    std::vector<char> in_brick(static_cast<std::size_t>(mesh.num_nodes()), 0);
-    for (const fe::Hex8Element& h : mesh.hexes())
-      for (Index n : h.nodes) in_brick[static_cast<std::size_t>(n)] = 1;
-    ModalStressModes m;
-    for (Index n = 0; n < mesh.num_nodes(); ++n)
-      if (in_brick[static_cast<std::size_t>(n)]) m.nodes_.push_back(n);
-    auto op = fe::nodal_stress_operator(mesh, sub.model().dofs, m.nodes_);
-    if (!op) return op.error();
-    const MatrixXd field_per_mode = sub.unit_displacements() * boundary_modes.leftCols(NModes);
-    m.modes_ = (*op * field_per_mode).template cast<Scalar>();
-    return m;
-  }
+  static Result<ModalStressModes> build(const SubModel& sub, const MatrixXd& boundary_modes);
 
   Index num_nodes() const { return static_cast<Index>(nodes_.size()); }
   /// Sub-model node of entry i.
@@ -96,5 +76,30 @@ class ModalStressModes {
   std::vector<Index> nodes_;
   Modes modes_;
 };
+
+template <int NModes, class Scalar>
+template <class>
+Result<ModalStressModes<NModes, Scalar>> ModalStressModes<NModes, Scalar>::build(
+    const SubModel& sub, const MatrixXd& boundary_modes) {
+  if (boundary_modes.rows() != sub.num_boundary_dofs())
+    return make_error(ErrorCode::size_mismatch, "modal stress modes: the sub-model has ",
+                      sub.num_boundary_dofs(), " boundary DOFs, the boundary modes ",
+                      boundary_modes.rows());
+  if (boundary_modes.cols() < NModes)
+    return make_error(ErrorCode::size_mismatch, "modal stress modes: the host body has ",
+                      boundary_modes.cols(), " modes, the template asks for ", NModes);
+  const fe::Mesh& mesh = sub.mesh();
+  std::vector<char> in_brick(static_cast<std::size_t>(mesh.num_nodes()), 0);
+  for (const fe::Hex8Element& h : mesh.hexes())
+    for (Index n : h.nodes) in_brick[static_cast<std::size_t>(n)] = 1;
+  ModalStressModes m;
+  for (Index n = 0; n < mesh.num_nodes(); ++n)
+    if (in_brick[static_cast<std::size_t>(n)]) m.nodes_.push_back(n);
+  auto op = fe::nodal_stress_operator(mesh, sub.model().dofs, m.nodes_);
+  if (!op) return op.error();
+  const MatrixXd field_per_mode = sub.unit_displacements() * boundary_modes.leftCols(NModes);
+  m.modes_ = (*op * field_per_mode).template cast<Scalar>();
+  return m;
+}
 
 }  // namespace flexstress::stress

@@ -214,7 +214,7 @@ const char* fs_status_string(int status) {
   return status >= 0 && status <= FS_ERROR_INTERNAL ? names[status] : "unknown status";
 }
 const char* fs_step_status_string(int s) {
-  if (s < 0 || s > static_cast<int>(fsx::StepStatus::capacity_exceeded)) return "error";
+  if (s < 0 || s > static_cast<int>(fsx::StepStatus::budget_reached)) return "error";
   return fsx::to_string(static_cast<fsx::StepStatus>(s));
 }
 
@@ -549,8 +549,8 @@ int fs_step(fs_data* d) {
   if (!d) return null_argument("fs_step"), FS_STEP_ERROR;
   try {
     const fsx::StepStatus s = fsx::step(*d->model, d->data);
-    if (s != fsx::StepStatus::ok) {
-      // The step's reason, if it left one (a restart's), else the status's text.
+    if (s != fsx::StepStatus::ok && s != fsx::StepStatus::budget_reached) {
+      // The step's reason (where it failed, or why a restart did), else the status's text.
       d->error = d->data.message[0] != '\0' ? d->data.message.data() : fsx::to_string(s);
       fail(FS_ERROR_NOT_CONVERGED, d->error);
     }

@@ -311,7 +311,7 @@ RunResult run_crane(const Knobs& k) {
       const auto c = Clock::now();
       if (st == StepStatus::constraint_violation) {
         ++r.violations;
-      } else if (st != StepStatus::ok) {
+      } else if (st != StepStatus::ok && st != StepStatus::budget_reached) {
         r.error = std::string("step ") + std::to_string(i) + " at t = " + std::to_string(d.t) +
                   " s: " + to_string(st);
         return;

@@ -67,12 +67,12 @@ int main(int argc, char** argv) {
     const StepStatus st = step(model, d);
     const auto t1 = std::chrono::steady_clock::now();
     step_us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
-    if (st != StepStatus::ok) {
+    if (st != StepStatus::ok && st != StepStatus::budget_reached) {
       outcome = std::string(to_string(st)) + " at t = " + std::to_string(d.t) + " s";
       break;
     }
-    const bool kept = d.statistics.over_budget > over_budget;
-    over_budget = d.statistics.over_budget;
+    const bool kept = st == StepStatus::budget_reached;
+    over_budget += kept ? 1 : 0;
     const double e = energy(model, d).total();
     monitor.record(*chain, d, e, e0, kept);
     csv << d.t << "," << monitor.first_crank << "," << e - e0 << "," << d.statistics.last_iterations

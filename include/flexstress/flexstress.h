@@ -67,6 +67,8 @@ typedef enum fs_step_status {
   FS_STEP_ABOVE_STABILITY_LIMIT = 4,
   FS_STEP_INVALID_INPUT = 5,
   FS_STEP_CAPACITY_EXCEEDED = 6,
+  FS_STEP_TOO_LARGE = 7, /* the corrector diverged: the step is too large for the motion */
+  FS_STEP_BUDGET_REACHED = 8, /* kept at the Newton budget (accept_at_iteration_limit) */
   FS_STEP_ERROR = -1 /* null or foreign data, or an internal error */
 } fs_step_status;
 

@@ -87,7 +87,8 @@ TEST_CASE("a Newton budget keeps the step's last iterate instead of failing") {
   // exactly with the body, Settings::corotate_factorization), so a budget of one binds at every
   // step; the state stays finite (a budget must never abort or leave NaN behind).
   const Pendulum p = make_pendulum();
-  auto run = [&](int max_iterations, bool budget, long* over_budget, StepStatus* failure) {
+  auto run = [&](int max_iterations, bool budget, long* over_budget, StepStatus* failure,
+                 long* budget_statuses = nullptr) {
     Data<double> d(p.model);
     d.settings.step = 1e-3;
     d.settings.max_iterations = max_iterations;
@@ -96,6 +97,12 @@ TEST_CASE("a Newton budget keeps the step's last iterate instead of failing") {
     for (int i = 0; i < 1000; ++i) {
       const double t_before = d.t;
       const StepStatus st = step(p.model, d);
+      if (st == StepStatus::budget_reached) {
+        // Kept, and says how far from converged: the last correction above its tolerance.
+        CHECK(d.statistics.last_correction > 1.0);
+        if (budget_statuses) ++*budget_statuses;
+        continue;
+      }
       if (st != StepStatus::ok && st != StepStatus::constraint_violation) {
         if (failure) *failure = st;
         CHECK(d.t == t_before);  // the failed step was undone
@@ -111,10 +118,11 @@ TEST_CASE("a Newton budget keeps the step's last iterate instead of failing") {
   const auto refused = run(1, false, nullptr, &failure);
   CHECK(refused.t < 0.5);
   CHECK(failure == StepStatus::newton_not_converged);
-  long over = 0;
-  const auto kept = run(1, true, &over, nullptr);
+  long over = 0, budget_statuses = 0;
+  const auto kept = run(1, true, &over, nullptr, &budget_statuses);
   CHECK(kept.t == doctest::Approx(1.0));
   CHECK(over > 0);
+  CHECK(budget_statuses == over);  // every step kept at the budget said so
   const double dx =
       (body_position(p.model, kept, p.bob) - body_position(p.model, converged, p.bob)).norm();
   MESSAGE("1-iteration budget: " << over << " steps at the limit, position off by " << dx
@@ -149,6 +157,77 @@ TEST_CASE("bad model input: a non-finite state and a bad motion table get errors
   REQUIRE_FALSE(backwards.ok());
   CHECK(backwards.error().message.find("time at row 3 (0.5) does not increase") !=
         std::string::npos);
+}
+
+TEST_CASE("a motion table that no step can follow is refused at setup, naming its rows") {
+  // A 0.05 rad jump of the brake's angle within a nanosecond: the spline's rate there is 5e7
+  // rad/s, so one step of 1 ms would move the law 1e6 times its whole range.
+  const auto jump = TableLaw<double>::create({0.0, 1.0, 1.0 + 1e-9, 2.0}, {0.0, 0.0, 0.05, 0.05});
+  REQUIRE(jump.ok());
+  CHECK(jump->row_too_fast(1e-3) == 2);
+  const std::string why = MotionLaw<double>::from_table(*jump).check_step(1e-3);
+  MESSAGE(why);
+  CHECK(why.find("between rows 2 and 3") != std::string::npos);
+  // A sine of period 0.1 s sampled every millisecond: 63 steps of 1 ms per radian of phase
+  // follow it; at 50 ms per step (w h = 3.1 > sqrt 2) they cannot.
+  std::vector<double> t, s;
+  for (int i = 0; i <= 1000; ++i) {
+    t.push_back(i * 1e-3);
+    s.push_back(0.1 * std::sin(2 * M_PI * t.back() / 0.1));
+  }
+  const auto sine = TableLaw<double>::create(t, s);
+  REQUIRE(sine.ok());
+  CHECK(sine->row_too_fast(1e-3) == 0);
+  CHECK(sine->row_too_fast(5e-2) > 0);
+  // In a model: finalize names the driver.
+  ModelBuilder<double> b;
+  const BodyId bob = b.add_rigid_body("bob", 1.0, Vector3d::Zero(), Matrix3d::Identity() * 1e-6);
+  b.set_initial_pose(bob, Vector3d(1, 0, 0));
+  const MarkerId pivot = b.add_marker("pivot", b.ground(), -1, Vector3d::Zero());
+  const MarkerId link_end = b.add_marker("link end", bob, -1, Vector3d(-1, 0, 0));
+  b.add_joint("hinge", JointKind::revolute, pivot, link_end);
+  b.add_driver("brake", JointKind::revolute_driver, pivot, link_end,
+               MotionLaw<double>::from_table(*jump));
+  const auto m = b.finalize();
+  REQUIRE_FALSE(m.ok());
+  MESSAGE(m.error().what());
+  CHECK(m.error().what().find("joint 'brake': its table changes by 0.05 between rows 2 and 3") !=
+        std::string::npos);
+  // Swapping it in at run time is refused the same way.
+  const Pendulum p = make_pendulum(Vector3d(1, 0, 0), /*with_brake=*/true);
+  Data<double> d(p.model);
+  const Status swapped = set_law(p.model, d, p.brake, MotionLaw<double>::from_table(*jump));
+  REQUIRE_FALSE(swapped.ok());
+  CHECK(swapped.error().what().find("rows 2 and 3") != std::string::npos);
+}
+
+TEST_CASE("a step too large for the motion says so before any state turns non-finite") {
+  // The pendulum spun at 100 rad/s: steps of 0.1, 0.03 and 0.01 s turn it by 10, 3 and 1 rad
+  // (or, at 0.01 s, reach that within 0.2 s). Each run ends in step_too_large with the state of
+  // the last good step, finite, and a message naming the body and its turn per step; 1 ms
+  // steps (0.1 rad) run the whole second.
+  for (const double h : {0.1, 0.03, 0.01, 1e-3}) {
+    CAPTURE(h);
+    const Pendulum p = make_pendulum();
+    Data<double> d(p.model);
+    d.settings.step = h;
+    set_body_velocity(p.model, d, p.bob, Vector3d(0, 100, 0), Vector3d(0, 0, 100));
+    REQUIRE(initialize(p.model, d).ok());
+    StepStatus st = StepStatus::ok;
+    const long steps = std::lround(0.2 / h);
+    for (long i = 0; i < steps && st == StepStatus::ok; ++i) st = step(p.model, d);
+    CHECK(d.q.allFinite());
+    CHECK(d.v.allFinite());
+    if (h < 5e-3) {
+      CHECK(st == StepStatus::ok);
+      continue;
+    }
+    const std::string why = d.message.data();
+    MESSAGE(why);
+    CHECK(st == StepStatus::step_too_large);
+    CHECK(why.find("too large for the motion") != std::string::npos);
+    CHECK(why.find("body 'bob' turns by") != std::string::npos);
+  }
 }
 
 TEST_CASE("checkpoint: a restored run continues bit-identically; damaged ones are refused") {

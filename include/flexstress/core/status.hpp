@@ -164,6 +164,10 @@ enum class StepStatus : std::uint8_t {
   step_above_stability_limit,  ///< Explicit integrator: h exceeds its stability limit.
   invalid_input,               ///< A sample or command was NaN/infinite; nothing was changed.
   capacity_exceeded,           ///< A bounded buffer is full; nothing was lost, nothing was added.
+  step_too_large,  ///< The implicit corrector diverged from a finite state; the step was not taken.
+  /// With a Newton budget (accept_at_iteration_limit): the step was kept at its iteration limit
+  /// without converging; StepStatistics::last_correction says how far from converged it is.
+  budget_reached,
 };
 
 inline const char* to_string(StepStatus status) noexcept {
@@ -175,6 +179,8 @@ inline const char* to_string(StepStatus status) noexcept {
     case StepStatus::step_above_stability_limit: return "step size above the stability limit";
     case StepStatus::invalid_input: return "invalid (non-finite) input";
     case StepStatus::capacity_exceeded: return "capacity exceeded";
+    case StepStatus::step_too_large: return "step too large for the motion (Newton diverged)";
+    case StepStatus::budget_reached: return "kept at the Newton budget, not converged";
   }
   return "unknown status";
 }

@@ -107,6 +107,29 @@ class TableLaw {
     return {static_cast<Scalar>(value), static_cast<Scalar>(rate), static_cast<Scalar>(acc)};
   }
 
+  /// The row interval (its first row, counted from 1) that steps of size h follow worst, if
+  /// they cannot follow it, else 0: over it the law's mean rate times h, or its acceleration at
+  /// one of its rows times h^2, exceeds the table's whole range of values. A jump between close
+  /// rows gives rates and accelerations that grow as 1/dt and 1/dt^2 there; a sine of
+  /// frequency w is flagged when w h > sqrt(2), fewer than about 4.4 steps per period.
+  std::size_t row_too_fast(double h) const {
+    if (t_.size() < 2) return 0;
+    const auto [lo, hi] = std::minmax_element(s_.begin(), s_.end());
+    const double range = *hi - *lo;
+    std::size_t worst = 0;
+    double worst_move = range;  // what a step may move at most
+    for (std::size_t i = 0; i + 1 < t_.size(); ++i) {
+      const double rate = (s_[i + 1] - s_[i]) / (t_[i + 1] - t_[i]);
+      const double acc = std::max(std::abs(m_[i]), std::abs(m_[i + 1]));
+      const double move = std::max(std::abs(rate) * h, acc * h * h);
+      if (move > worst_move) {
+        worst = i + 1;
+        worst_move = move;
+      }
+    }
+    return worst;
+  }
+
   double start_time() const { return t_.front(); }
   /// The rows it was made from (create(times(), values()) makes the same law).
   const std::vector<double>& times() const { return t_; }

@@ -102,6 +102,9 @@ struct StepStatistics {
   int last_iterations = 0;
   int last_factorizations = 0;
   long over_budget = 0;  ///< steps kept at the iteration limit (accept_at_iteration_limit)
+  /// The last step's final Newton correction over its tolerance: at most 1 when it converged,
+  /// how far from converged a step kept at the budget is.
+  double last_correction = 0;
 };
 
 }  // namespace flexstress

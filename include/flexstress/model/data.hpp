@@ -93,7 +93,7 @@ struct Data {
 
   /// The reason of the last failure (initialization, a step's restart), for a caller that
   /// only sees a status; fixed storage, written without allocating.
-  std::array<char, 256> message{};
+  std::array<char, 512> message{};
 
   Data() = default;
   /// Allocates everything for `model` and puts the bodies at their initial poses, at rest.

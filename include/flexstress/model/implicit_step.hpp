@@ -46,6 +46,7 @@
 #include "flexstress/model/data.hpp"
 #include "flexstress/model/model.hpp"
 #include "flexstress/model/pipeline.hpp"
+#include "flexstress/model/step_failure.hpp"
 
 namespace flexstress {
 
@@ -360,7 +361,8 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
   d.t = t_n + h;
   int it = 0;
   bool stale_for_next = false;
-  bool converged = false, fresh = false, stale_step = false, restored = false;
+  bool converged = false, fresh = false, stale_step = false, restored = false, diverged = false;
+  int growth = 0;
   Scalar previous = std::numeric_limits<Scalar>::infinity();
   Scalar residual_prev = std::numeric_limits<Scalar>::infinity();
   d.statistics.last_factorizations = 0;
@@ -396,7 +398,10 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
     in.dx = -in.r;
     detail::solve_turned(model, d, in.dx, fresh);
     const Scalar size = detail::correction_size(d);
-    if (!std::isfinite(size)) break;
+    if (!std::isfinite(size)) {
+      diverged = true;
+      break;
+    }
     const bool stale = !fresh && it > 0 && size > s.refactor_rate * previous;
     if (stale && it == 1 && !s.accept_at_iteration_limit) {
       stale_for_next = true;
@@ -406,7 +411,18 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
       in.dx = -in.r;
       detail::solve_turned(model, d, in.dx, fresh);
     }
+    const Scalar last = previous;
     previous = detail::correction_size(d);
+    // Newton with a fresh matrix converges near the solution; corrections that grow twice in a
+    // row with one, beyond the step's own motion, diverge: the step is too large for the
+    // motion. Stop before the state does. (Near a singular configuration corrections may stall
+    // or grow a little while far below the motion; the iteration limit handles those.)
+    growth = fresh && it > 0 && previous > last ? growth + 1 : 0;
+    if (growth >= 2 &&
+        previous > h * max_abs(in.v_n.cwiseProduct(in.correction_scale)) + Scalar(100) * in.tol_x) {
+      diverged = true;
+      break;
+    }
     stale_step = !fresh;
     if (stale_step) {
       in.q_save = d.q;
@@ -425,6 +441,7 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
     }
   }
   d.statistics.last_iterations = it;
+  d.statistics.last_correction = static_cast<double>(previous / in.tol_x);
   d.statistics.iterations += it;
   const bool finite = d.v.allFinite() && d.v_dot.allFinite() && d.q.allFinite();
   bool kept_at_limit = false;
@@ -434,13 +451,20 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
     ++d.statistics.over_budget;
   }
   if (!converged || !finite) {
+    // A step from a finite state that diverges or turns non-finite was too large for the
+    // motion; from a non-finite state it could not start. d.message says where.
+    const bool start_finite = in.q_n.allFinite() && in.v_n.allFinite() && in.vd_n.allFinite();
+    const StepStatus status = !start_finite         ? StepStatus::non_finite_state
+                              : diverged || !finite ? StepStatus::step_too_large
+                                                    : StepStatus::newton_not_converged;
     d.q = in.q_n;
     d.v = in.v_n;
     d.v_dot = in.vd_n;
     d.a = in.a_n;
     d.t = t_n;
     in.have_factorization = false;
-    return finite ? StepStatus::newton_not_converged : StepStatus::non_finite_state;
+    detail::explain_step_failure(model, d, status, t_n, it, previous, in.tol_x);
+    return status;
   }
   if (stale_for_next) in.have_factorization = false;
   // The multipliers of the converged equations are lambda* + alpha Phi at the final positions,
@@ -480,7 +504,7 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
     if (max_abs(in.e) > s.violation_limit * (Scalar(1) + max_abs(d.v)))
       return StepStatus::constraint_violation;
   }
-  return StepStatus::ok;
+  return kept_at_limit ? StepStatus::budget_reached : StepStatus::ok;
 }
 
 }  // namespace flexstress

@@ -24,6 +24,7 @@
 
 #include "flexstress/core/status.hpp"
 #include "flexstress/core/types.hpp"
+#include "flexstress/model/body_holder_ops.hpp"
 #include "flexstress/model/body_kernels.hpp"
 #include "flexstress/model/model.hpp"
 #include "flexstress/reduction/modal_body.hpp"
@@ -62,7 +63,7 @@ class ModelBuilder {
   void add_geometric_stiffening(BodyId b, const reduction::ModalGeometricStiffness& g) {
     Pending& p = body_entry(b, "add_geometric_stiffening");
     if (&p == &scratch_ || !p.holder) return;
-    if (Status s = p.set_geometric(p.holder.get(), g); !s.ok())
+    if (Status s = p.ops.set_geometric(p.holder.get(), g); !s.ok())
       fail(s.error().code, "body '", p.body.name, "': ", s.error().message);
     else
       p.body.effects.geometric_stiffening = true;
@@ -114,7 +115,7 @@ class ModelBuilder {
       ground_.push_back(g);
     } else {
       Pending& p = bodies_[static_cast<std::size_t>(body.index)];
-      m.local = p.holder ? p.add_marker(p.holder.get(), node, offset, axes) : -1;
+      m.local = p.holder ? p.ops.add_marker(p.holder.get(), node, offset, axes) : -1;
       if (m.local < 0 && p.holder)
         fail(ErrorCode::invalid_mesh, "marker '", name, "': body '", p.body.name, "' has no node ",
              node);
@@ -324,16 +325,20 @@ class ModelBuilder {
     m.ground_motion_ = ground_motion_;
     m.ground_axis_ = ground_axis_;
     if (ground_motion_.moving)
-      for (int k : {ground_motion_.x, ground_motion_.y, ground_motion_.z, ground_motion_.angle})
-        if (const char* bad =
-                laws_[static_cast<std::size_t>(k)].check(static_cast<int>(inputs_.size())))
+      for (int k : {ground_motion_.x, ground_motion_.y, ground_motion_.z, ground_motion_.angle}) {
+        const auto& law = laws_[static_cast<std::size_t>(k)];
+        if (const char* bad = law.check(static_cast<int>(inputs_.size())))
           return make_error(ErrorCode::invalid_argument, "ground motion: ", bad);
+        if (const std::string fast = law.check_step(steps.step); !fast.empty())
+          return make_error(ErrorCode::invalid_argument, "ground motion: ", fast);
+      }
     // Bodies: offsets, effects, copies of the holders (a Model owns its bodies; builders may
     // go on adding to theirs).
     int nv = 0, nq = 0, mass = 0, geometric = 0;
     for (const Pending& p : bodies_) {
       typename ModelType::Body b = p.body;
-      b.holder = p.clone(p.holder.get(), p.zeta, b.displacement_scale, b.max_frequency, b.modes);
+      b.holder =
+          p.ops.clone(p.holder.get(), p.zeta, b.displacement_scale, b.max_frequency, b.modes);
       b.nv = 6 + b.modes;
       b.v_offset = nv;
       b.q_offset = nq;
@@ -343,7 +348,7 @@ class ModelBuilder {
       mass += b.nv * b.nv;
       b.effects.gravity = has_gravity_;
       b.effects.quadratic_velocity = quadratic_velocity_;
-      b.effects.modal_damping = b.modes > 0 && p.zeta_any(p.holder.get(), p.zeta);
+      b.effects.modal_damping = b.modes > 0 && p.ops.damps(p.holder.get(), p.zeta);
       if (b.effects.geometric_stiffening && b.modes > 0) {
         b.geometric_offset = geometric;
         geometric += b.modes * b.modes;
@@ -408,10 +413,13 @@ class ModelBuilder {
           m.markers_[static_cast<std::size_t>(j.marker_i)].slot)] |= joint_parts_i(j.kind);
       m.slot_parts_[static_cast<std::size_t>(
           m.markers_[static_cast<std::size_t>(j.marker_j)].slot)] |= joint_parts_j(j.kind);
-      if (j.law >= 0)
-        if (const char* bad =
-                laws_[static_cast<std::size_t>(j.law)].check(static_cast<int>(inputs_.size())))
+      if (j.law >= 0) {
+        const auto& law = laws_[static_cast<std::size_t>(j.law)];
+        if (const char* bad = law.check(static_cast<int>(inputs_.size())))
           return make_error(ErrorCode::invalid_argument, "joint '", j.name, "': ", bad);
+        if (const std::string fast = law.check_step(steps.step); !fast.empty())
+          return make_error(ErrorCode::invalid_argument, "joint '", j.name, "': ", fast);
+      }
       m.joints_.push_back(std::move(j));
     }
     m.nc_ = row;
@@ -467,12 +475,7 @@ class ModelBuilder {
   struct Pending {
     typename ModelType::Body body;
     std::shared_ptr<void> holder;
-    int (*add_marker)(void*, Index, const Vec3<Scalar>&, const Mat3<Scalar>&) = nullptr;
-    Status (*set_geometric)(void*, const reduction::ModalGeometricStiffness&) = nullptr;
-    /// Copies the holder with damping ratio zeta (if set) and reads its mode data.
-    std::shared_ptr<const void> (*clone)(const void*, const std::optional<Scalar>&,
-                                         std::vector<Scalar>&, Scalar&, int&) = nullptr;
-    bool (*zeta_any)(const void*, const std::optional<Scalar>&) = nullptr;
+    detail::BodyHolderOps<Scalar> ops;
     std::optional<Scalar> zeta;
   };
 
@@ -489,39 +492,6 @@ class ModelBuilder {
     return bodies_[static_cast<std::size_t>(b.index)];
   }
 
-  template <int N>
-  static std::shared_ptr<const void> clone_holder(const void* h, const std::optional<Scalar>& zeta,
-                                                  std::vector<Scalar>& scale, Scalar& max_frequency,
-                                                  int& modes) {
-    auto copy =
-        std::make_shared<BodyHolder<Scalar, N>>(*static_cast<const BodyHolder<Scalar, N>*>(h));
-    if (zeta) copy->body.set_damping_ratio(*zeta);
-    modes = copy->body.modes();
-    const auto& s = copy->body.modal_displacement_scale();
-    scale.assign(s.data(), s.data() + s.size());
-    max_frequency = copy->body.max_frequency();
-    return copy;
-  }
-  template <int N>
-  static bool any_damping(const void* h, const std::optional<Scalar>& zeta) {
-    if (zeta) return *zeta != Scalar(0);
-    return !static_cast<const BodyHolder<Scalar, N>*>(h)->body.modal_damping().isZero(0);
-  }
-
-  template <int N>
-  static void set_functions(Pending& p) {
-    p.add_marker = &detail::BodyKernelImpl<Scalar, N>::add_marker;
-    p.set_geometric = &detail::BodyKernelImpl<Scalar, N>::set_geometric_stiffness;
-    p.clone = &clone_holder<N>;
-    p.zeta_any = &any_damping<N>;
-  }
-  template <int... Ns>
-  static void set_functions_for(int modes, Pending& p, std::integer_sequence<int, Ns...>) {
-    bool done = false;
-    ((!done && modes == Ns ? (set_functions<Ns>(p), done = true) : false), ...);
-    if (!done) set_functions<Eigen::Dynamic>(p);
-  }
-
   template <int... Ns>
   static void adopt_compiled(const reduction::ModalBodyData& data, int modes, bool& done,
                              Pending& p, Error& error, std::integer_sequence<int, Ns...>) {
@@ -529,15 +499,9 @@ class ModelBuilder {
   }
 
   BodyId push(Pending p) {
-    if (p.body.kernels != nullptr) {
-      const int n = p.body.kernels->fixed_modes;
-      if (n == 0)
-        set_functions<0>(p);
-      else if (n == Eigen::Dynamic)
-        set_functions<Eigen::Dynamic>(p);
-      else
-        set_functions_for(n, p, std::integer_sequence<int, FLEXSTRESS_MODE_COUNTS>{});
-    }
+    if (p.body.kernels != nullptr)
+      p.ops = detail::body_holder_ops_for<Scalar>(
+          p.body.kernels->fixed_modes, std::integer_sequence<int, FLEXSTRESS_MODE_COUNTS>{});
     bodies_.push_back(std::move(p));
     return BodyId{static_cast<int>(bodies_.size()) - 1};
   }
@@ -563,10 +527,8 @@ class ModelBuilder {
   Error first_error_{ErrorCode::invalid_argument, std::string()};
 };
 
-// Defined outside the class, so that they are not inline: a unit that includes model/compiled.hpp
-// (FLEXSTRESS_COMPILED) then takes them from flexstress::compiled instead of instantiating the
-// body kernels of every mode count (push) and the bounded body's setup again (GCC instantiates
-// an inline member of an `extern template` class where it is used, to be able to inline it).
+// Outside the class, so not inline: units that declare ModelBuilder extern (model/compiled.hpp)
+// do not instantiate them, and with them every mode count's kernels (see core/precompute.hpp).
 template <class Scalar>
 BodyId ModelBuilder<Scalar>::add_rigid_body(const std::string& name, Scalar mass,
                                             const Vec3<Scalar>& center_of_mass,

@@ -4,8 +4,11 @@
 // callback with user data, or an input set from outside before each step.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <sstream>
+#include <string>
 #include <utility>
 
 #include "flexstress/dynamics/motion_laws.hpp"
@@ -73,6 +76,24 @@ struct MotionLaw {
                                                             : nullptr;
     }
     return "unknown law kind";
+  }
+
+  /// Why steps of size h cannot follow the law, naming its rows, or an empty string (setup
+  /// time; see TableLaw::row_too_fast). A prescribed motion that jumps between two close
+  /// rows would otherwise end the first step that meets it in a non-finite state.
+  std::string check_step(Scalar h) const {
+    if (kind != MotionLawKind::table) return std::string();
+    const std::size_t row = table.row_too_fast(static_cast<double>(h));
+    if (row == 0) return std::string();
+    const auto& t = table.times();
+    const auto& s = table.values();
+    const auto [lo, hi] = std::minmax_element(s.begin(), s.end());
+    std::ostringstream out;
+    out << "its table changes by " << s[row] - s[row - 1] << " between rows " << row << " and "
+        << row + 1 << " (" << t[row] - t[row - 1] << " s apart), faster than steps of "
+        << static_cast<double>(h) << " s can follow: more than its whole range (" << *hi - *lo
+        << ") within one step";
+    return out.str();
   }
 
   /// s(t); `inputs` holds the current input values (value, rate, acceleration) by InputId.

@@ -391,6 +391,8 @@ Status set_law(const Model<Scalar>& m, Data<Scalar>& d, JointId id, MotionLaw<Sc
                       " is not a driver: it has no law");
   if (const char* bad = law.check(static_cast<int>(m.inputs().size())))
     return make_error(ErrorCode::invalid_argument, m.describe_joint(id.index), ": ", bad);
+  if (const std::string fast = law.check_step(d.settings.step); !fast.empty())
+    return make_error(ErrorCode::invalid_argument, m.describe_joint(id.index), ": ", fast);
   d.laws[static_cast<std::size_t>(j.law)] = std::move(law);
   ++d.revision;  // the next step restarts from the state with the new law's rates
   return Status::success();

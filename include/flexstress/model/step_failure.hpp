@@ -1,0 +1,128 @@
+// Why a step failed, in words that name the part: the body and coordinate whose residual or
+// state is worst, the joint whose constraint is most violated, and how fast the fastest body
+// turns per step (a step too large for the motion). Written into Data::message with snprintf
+// into its fixed storage, so a failing step still allocates nothing.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+
+#include <Eigen/Core>
+
+#include "flexstress/core/status.hpp"
+#include "flexstress/core/types.hpp"
+#include "flexstress/model/data.hpp"
+#include "flexstress/model/joint_rows.hpp"
+#include "flexstress/model/model.hpp"
+#include "flexstress/model/pipeline.hpp"
+
+namespace flexstress::detail {
+
+/// The body that velocity index i belongs to, or -1.
+template <class Scalar>
+int body_of_velocity(const Model<Scalar>& model, Index i) {
+  const auto& bodies = model.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    if (i >= bodies[b].v_offset && i < bodies[b].v_offset + bodies[b].nv)
+      return static_cast<int>(b);
+  return -1;
+}
+
+/// "translation y", "rotation x", "mode 3" for coordinate `local` of a body's velocity block.
+inline void name_body_coordinate(Index local, char* out, std::size_t size) {
+  static const char* const axis[3] = {"x", "y", "z"};
+  if (local < 3)
+    std::snprintf(out, size, "translation %s", axis[local]);
+  else if (local < 6)
+    std::snprintf(out, size, "rotation %s", axis[local - 3]);
+  else
+    std::snprintf(out, size, "mode %d", static_cast<int>(local - 6) + 1);
+}
+
+/// The body turning fastest (|w| at the start of the step) and its turn per step, w h.
+template <class Scalar>
+int fastest_turning_body(const Model<Scalar>& model, const Eigen::Matrix<Scalar, -1, 1>& v,
+                         Scalar h, Scalar& turn_per_step) {
+  int fastest = -1;
+  turn_per_step = Scalar(0);
+  const auto& bodies = model.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const Scalar turn = v.template segment<3>(bodies[b].v_offset + 3).norm() * h;
+    if (fastest < 0 || turn > turn_per_step) {
+      fastest = static_cast<int>(b);
+      turn_per_step = turn;
+    }
+  }
+  return fastest;
+}
+
+/// The most violated constraint row of d.phi (-1 without constraints).
+template <class Scalar>
+Index worst_constraint_row(const Data<Scalar>& d, Scalar& violation) {
+  violation = Scalar(0);
+  Index worst = -1;
+  for (Index r = 0; r < d.phi.size(); ++r)
+    if (!(std::abs(d.phi(r)) <= violation)) {  // NaN counts as worst
+      violation = std::abs(d.phi(r));
+      worst = r;
+    }
+  return worst;
+}
+
+/// Writes why the step from time t_n failed after `iterations` Newton iterations (`size` the
+/// last correction, `tolerance` its limit); the Data still holds the failed iterate.
+template <class Scalar>
+void explain_step_failure(const Model<Scalar>& model, Data<Scalar>& d, StepStatus status,
+                          Scalar t_n, int iterations, Scalar size, Scalar tolerance) {
+  char part[160] = "";
+  const Scalar h = d.settings.step;
+  Scalar turn = Scalar(0);
+  const int fastest = fastest_turning_body(model, d.integrator.v_n, h, turn);
+  char turning[192] = "";
+  if (fastest >= 0)
+    std::snprintf(turning, sizeof turning, "; body '%s' turns by %.3g rad per step",
+                  model.bodies()[static_cast<std::size_t>(fastest)].name.c_str(),
+                  static_cast<double>(turn));
+  if (status == StepStatus::non_finite_state) {
+    const int body = nonfinite_body(model, d);
+    std::snprintf(d.message.data(), d.message.size(),
+                  "step from t = %g: the state at its start is not finite (body '%s')",
+                  static_cast<double>(t_n),
+                  body >= 0 ? model.bodies()[static_cast<std::size_t>(body)].name.c_str() : "?");
+    return;
+  }
+  // The worst entry of the last residual: a body and one of its coordinates.
+  Index worst = 0;
+  if (d.integrator.r.size() > 0) d.integrator.r.cwiseAbs().maxCoeff(&worst);
+  const int body = body_of_velocity(model, worst);
+  if (body >= 0) {
+    char coordinate[32];
+    const auto& b = model.bodies()[static_cast<std::size_t>(body)];
+    name_body_coordinate(worst - b.v_offset, coordinate, sizeof coordinate);
+    std::snprintf(part, sizeof part, "largest residual in body '%s' (%s)", b.name.c_str(),
+                  coordinate);
+  }
+  Scalar violation = Scalar(0);
+  const Index row = worst_constraint_row(d, violation);
+  char joint[160] = "";
+  if (row >= 0) {
+    const int k = model.joint_of_row(static_cast<int>(row));
+    const auto& j = model.joints()[static_cast<std::size_t>(k)];
+    std::snprintf(joint, sizeof joint, ", largest violation %.3g in joint '%s' (%s)",
+                  static_cast<double>(violation), j.name.c_str(), to_string(j.kind));
+  }
+  if (status == StepStatus::step_too_large)
+    std::snprintf(d.message.data(), d.message.size(),
+                  "step from t = %g of %g s: too large for the motion, Newton diverged "
+                  "(correction %.3g after %d iterations, growing with a fresh matrix)%s; %s%s",
+                  static_cast<double>(t_n), static_cast<double>(h), static_cast<double>(size),
+                  iterations, turning, part, joint);
+  else
+    std::snprintf(d.message.data(), d.message.size(),
+                  "step from t = %g: Newton not converged in %d iterations (correction %.3g, "
+                  "tolerance %.3g); %s%s%s",
+                  static_cast<double>(t_n), iterations, static_cast<double>(size),
+                  static_cast<double>(tolerance), part, joint, turning);
+}
+
+}  // namespace flexstress::detail

@@ -143,6 +143,7 @@ int run(const RunOptions& o) {
   VectorXd p_peak = modal_coordinates(model, d, cr.boom_body);
   const bool progress = !o.quiet && ::isatty(STDERR_FILENO);
   long failed_at = -1;
+  int most_iterations = 0;
   for (long i = 0; i < steps; ++i) {
     const auto a = Clock::now();
     const StepStatus st = step(model, d);
@@ -153,6 +154,7 @@ int run(const RunOptions& o) {
                    d.message[0] ? ": " : "", d.message.data());
       break;
     }
+    most_iterations = std::max(most_iterations, d.statistics.last_iterations);
     (void)evaluate_outputs(model, d);
     const auto c = Clock::now();
     audit.record(model, d);
@@ -225,10 +227,13 @@ int run(const RunOptions& o) {
       static_nominal, -beam_theory, static_hot, static_hot / beam_theory);
   std::printf("  hot spot %.2f to %.2f MPa (peak at t = %.3f s); toe line max %.2f MPa\n", hot_min,
               hot_max, t_peak, toe_max);
-  std::printf("  stress recovery %.0f ns per step for %d outputs; %.2f Newton iterations/step\n",
-              percentile(recovery_ns, 0.5), model.num_outputs(),
-              static_cast<double>(d.statistics.iterations) /
-                  static_cast<double>(std::max<std::size_t>(1, step_us.size())));
+  const double steps_taken = static_cast<double>(std::max<std::size_t>(1, step_us.size()));
+  std::printf(
+      "  stress recovery %.0f ns per step for %d outputs; %.2f Newton iterations/step (at most "
+      "%d), %.3f factorizations/step\n",
+      percentile(recovery_ns, 0.5), model.num_outputs(),
+      static_cast<double>(d.statistics.iterations) / steps_taken, most_iterations,
+      static_cast<double>(d.statistics.factorizations) / steps_taken);
   std::printf(
       "  energy: the cycle moves up to %.1f J (driver work at the end %.3g J, modal damping "
       "%.3g J); largest |E - E0 - W + D| %.3g J (%.2g of it)\n",
@@ -240,6 +245,7 @@ int run(const RunOptions& o) {
   std::printf("precompute_ms: %.1f\n", precompute_ms);
   std::printf("steps: %zu\n", step_us.size());
   std::printf("step_us_median: %.2f\n", percentile(step_us, 0.5));
+  std::printf("step_us_p999: %.2f\n", percentile(step_us, 0.999));
   std::printf("step_us_max: %.2f\n", percentile(step_us, 1.0));
   std::printf("recovery_ns_median: %.0f\n", percentile(recovery_ns, 0.5));
   std::printf("static_nominal_MPa: %.3f\n", static_nominal);

@@ -385,7 +385,9 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
       detail::factorize_iteration(model, d);
       fresh = true;
       stale_step = false;
+      stale_for_next = stale_for_next || s.refactor_after_stale_step;
     } else if (stale_step && !(residual < residual_prev)) {
+      stale_for_next = stale_for_next || s.refactor_after_stale_step;
       d.q = in.q_save;
       d.v = in.v_save;
       d.v_dot = in.vd_save;
@@ -406,6 +408,8 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
     if (stale && it == 1 && !s.accept_at_iteration_limit) {
       stale_for_next = true;
     } else if (stale) {
+      // Stale within this step's motion: it will be stale again by the next step's predictor.
+      stale_for_next = stale_for_next || s.refactor_after_stale_step;
       detail::factorize_iteration(model, d);
       fresh = true;
       in.dx = -in.r;

@@ -111,18 +111,38 @@ void explain_step_failure(const Model<Scalar>& model, Data<Scalar>& d, StepStatu
     std::snprintf(joint, sizeof joint, ", largest violation %.3g in joint '%s' (%s)",
                   static_cast<double>(violation), j.name.c_str(), to_string(j.kind));
   }
+  // The velocities the step started from against the joints, B v + Phi_t at the restored
+  // state (evaluated again: the workspace then describes it): index-3 steps keep positions on
+  // the joints, not velocities, and a drift there (a redundant loop's out-of-plane rates
+  // growing from round-off) spoils the predictor until Newton fails; smaller steps do not cure
+  // that, velocity projection does.
+  update_kinematics(model, d);
+  update_markers(model, d);
+  update_constraints(model, d);
+  jacobian_times(model, d, d.v, d.integrator.e);
+  d.integrator.e += d.phi_t;
+  Index drift_row = 0;
+  const Scalar drift =
+      d.integrator.e.size() > 0 ? d.integrator.e.cwiseAbs().maxCoeff(&drift_row) : Scalar(0);
+  char drifting[192] = "";
+  if (d.integrator.e.size() > 0) {
+    const auto& j =
+        model.joints()[static_cast<std::size_t>(model.joint_of_row(static_cast<int>(drift_row)))];
+    std::snprintf(drifting, sizeof drifting, "; velocities off the joints by %.3g (joint '%s')",
+                  static_cast<double>(drift), j.name.c_str());
+  }
   if (status == StepStatus::step_too_large)
     std::snprintf(d.message.data(), d.message.size(),
                   "step from t = %g of %g s: too large for the motion, Newton diverged "
-                  "(correction %.3g after %d iterations, growing with a fresh matrix)%s; %s%s",
+                  "(correction %.3g after %d iterations, growing with a fresh matrix)%s; %s%s%s",
                   static_cast<double>(t_n), static_cast<double>(h), static_cast<double>(size),
-                  iterations, turning, part, joint);
+                  iterations, turning, part, joint, drifting);
   else
     std::snprintf(d.message.data(), d.message.size(),
                   "step from t = %g: Newton not converged in %d iterations (correction %.3g, "
-                  "tolerance %.3g); %s%s%s",
+                  "tolerance %.3g); %s%s%s%s",
                   static_cast<double>(t_n), iterations, static_cast<double>(size),
-                  static_cast<double>(tolerance), part, joint, turning);
+                  static_cast<double>(tolerance), part, joint, turning, drifting);
 }
 
 }  // namespace flexstress::detail

@@ -144,6 +144,7 @@ int run(const RunOptions& o) {
   const bool progress = !o.quiet && ::isatty(STDERR_FILENO);
   long failed_at = -1;
   int most_iterations = 0;
+  double largest_velocity_violation = 0;
   for (long i = 0; i < steps; ++i) {
     const auto a = Clock::now();
     const StepStatus st = step(model, d);
@@ -158,6 +159,8 @@ int run(const RunOptions& o) {
     (void)evaluate_outputs(model, d);
     const auto c = Clock::now();
     audit.record(model, d);
+    // B of the last Newton iterate (refresh_workspace is off): drift would show here first.
+    largest_velocity_violation = std::max(largest_velocity_violation, velocity_violation(model, d));
     step_us.push_back(std::chrono::duration<double, std::micro>(b - a).count());
     recovery_ns.push_back(std::chrono::duration<double, std::nano>(c - b).count());
     if (inertia.size() > 0)
@@ -234,6 +237,8 @@ int run(const RunOptions& o) {
       percentile(recovery_ns, 0.5), model.num_outputs(),
       static_cast<double>(d.statistics.iterations) / steps_taken, most_iterations,
       static_cast<double>(d.statistics.factorizations) / steps_taken);
+  std::printf("  joints: largest velocity violation |B v + Phi_t| %.3g over the cycle\n",
+              largest_velocity_violation);
   std::printf(
       "  energy: the cycle moves up to %.1f J (driver work at the end %.3g J, modal damping "
       "%.3g J); largest |E - E0 - W + D| %.3g J (%.2g of it)\n",

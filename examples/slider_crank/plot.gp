@@ -1,7 +1,7 @@
 # Midpoint deflection of the slider crank's rod, from the programs' CSV files:
 #   mkdir -p sc-out
 #   ./slider_crank --start smooth --output sc-out/defaults
-#   ./slider_crank --start smooth --project-velocities --no-extrapolate-multipliers --output sc-out/projected
+#   ./slider_crank --start smooth --step 1e-4 --output sc-out/fine
 #   ./simeon_reference --ini 1 --every 100 > sc-out/simeon.csv
 #   gnuplot -e "dir='sc-out'" examples/slider_crank/plot.gp   (writes docs/slider_crank.png)
 if (!exists("dir")) dir = 'sc-out'
@@ -15,5 +15,5 @@ set grid
 set key below
 set title "Flexible slider crank (Simeon 1996, IVP Test Set 'crank'): the rod's midpoint relative to its pins"
 plot dir.'/simeon.csv' using 1:($2*1e3) with lines lw 4 lc rgb '#bbbbbb' title 'Test Set equations (RK4, 1e-6 s)', \
-     dir.'/projected/slider_crank.csv' using 1:($2*1e3) with lines lw 2 lc rgb '#2471a3' title 'flexstress, 1 ms, velocity projection', \
-     dir.'/defaults/slider_crank.csv' using 1:($2*1e3) with lines lw 1 lc rgb '#c0392b' title 'flexstress, defaults (stops at 0.091 s)'
+     dir.'/fine/slider_crank.csv' using 1:($2*1e3) with lines lw 2 lc rgb '#2471a3' title 'flexstress, defaults, 0.1 ms steps', \
+     dir.'/defaults/slider_crank.csv' using 1:($2*1e3) with lines lw 1 lc rgb '#c0392b' title 'flexstress, defaults (1 ms steps)'

@@ -70,6 +70,7 @@
   D Frame<S> marker_frame_in_body<S>(const Model<S>&, const Data<S>&, MarkerId);                  \
   D Reaction<S> joint_reaction<S>(const Model<S>&, const Data<S>&, JointId);                      \
   D S constraint_violation<S>(const Model<S>&, const Data<S>&);                                   \
+  D S velocity_violation<S>(const Model<S>&, const Data<S>&);                                     \
   D Energy<S> energy<S>(const Model<S>&, Data<S>&);                                               \
   D Energy<S> body_energy<S>(const Model<S>&, const Data<S>&, BodyId);                            \
   D void set_joint_active<S>(const Model<S>&, Data<S>&, JointId, bool);                           \

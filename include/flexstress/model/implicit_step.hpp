@@ -28,10 +28,10 @@
 // R_dot and body-frame w and p_dot, a body's own blocks of M and B^T B are T S_0 T^T with T =
 // diag(A, 1, 1), so rotating the R_dot parts of the residual and correction by the rotation since
 // the factorization makes them exact again for any rigid rotation. With
-// ImplicitSettings::project_velocities, after convergence the velocities are projected onto B v +
-// Phi_t = 0 with the same factorization, a projection orthogonal in the metric S (dominated by M
-// b'), which removes velocity drift. d.lambda then holds the multipliers of the converged
-// equations, lambda* + alpha Phi.
+// ImplicitSettings::project_velocities (or when they drift, velocity_drift_limit), after
+// convergence the velocities are projected onto B v + Phi_t = 0 with the same factorization, a
+// projection orthogonal in the metric S (dominated by M b'), which removes velocity drift.
+// d.lambda then holds the multipliers of the converged equations, lambda* + alpha Phi.
 #pragma once
 
 #include <algorithm>
@@ -484,13 +484,21 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
   in.vd_prev = in.vd_n;
   in.has_previous = true;
   ++d.statistics.steps;
-  if (s.refresh_workspace || s.project_velocities || model.has_force_states()) {
+  // Drift: |B v + Phi_t| with B of the last iterate (velocity_drift_limit).
+  bool project = s.project_velocities;
+  if (!project && s.velocity_drift_limit > Scalar(0) && model.num_constraints() > 0) {
+    jacobian_times(model, d, d.v, in.e);
+    in.e += d.phi_t;
+    project = max_abs(in.e) > s.velocity_drift_limit * (Scalar(1) + max_abs(d.v));
+    if (project) ++d.statistics.drift_projections;
+  }
+  if (s.refresh_workspace || project || model.has_force_states()) {
     update_kinematics(model, d);
     update_markers(model, d);
     update_constraints(model, d);
   }
   if (model.has_force_states()) update_force_states(model, d, /*start=*/false);
-  if (s.project_velocities) {
+  if (project) {
     detail::project_velocities(model, d, s.projection_iterations);
     if (s.project_accelerations) {
       update_kinematics(model, d);
@@ -502,7 +510,7 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
   d.a = ((Scalar(1) - in.alpha_f) * d.v_dot + in.alpha_f * in.vd_n - in.alpha_m * in.a_n) /
         (Scalar(1) - in.alpha_m);
   if (max_abs(d.phi) > s.violation_limit) return StepStatus::constraint_violation;
-  if (s.project_velocities) {
+  if (project) {
     jacobian_times(model, d, d.v, in.e);
     in.e += d.phi_t;
     if (max_abs(in.e) > s.violation_limit * (Scalar(1) + max_abs(d.v)))

@@ -5,6 +5,9 @@
 // plastic capture that keeps momentum).
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <string>
 #include <type_traits>
 
@@ -154,6 +157,28 @@ Reaction<Scalar> joint_reaction(const Model<Scalar>& m, const Data<Scalar>& d, J
 template <class Scalar>
 Scalar constraint_violation(const Model<Scalar>&, const Data<Scalar>& d) {
   return max_abs(d.phi);
+}
+
+/// Largest violation of the joints' velocity equations, |B v + Phi_t|, with the Jacobian of the
+/// last evaluation (as constraint_violation). Index-3 steps keep Phi on the joints, not this:
+/// a value that grows from step to step is drift, which ImplicitSettings::project_velocities
+/// removes (docs/dynamics.md, the flexible slider crank).
+template <class Scalar>
+Scalar velocity_violation(const Model<Scalar>& model, const Data<Scalar>& d) {
+  Scalar worst = Scalar(0);
+  for (const auto& j : model.joints()) {
+    std::array<Scalar, max_joint_equations> rows{};
+    for (int side = 0; side < 2; ++side) {
+      const int body = side == 0 ? j.body_i : j.body_j;
+      if (body < 0) continue;
+      const auto& b = model.bodies()[static_cast<std::size_t>(body)];
+      b.kernels->rows_times(b.nv, d.jacobian.data() + (side == 0 ? j.jac_i : j.jac_j), j.equations,
+                            d.v.data() + b.v_offset, rows.data());
+    }
+    for (int r = 0; r < j.equations; ++r)
+      worst = std::max(worst, std::abs(rows[static_cast<std::size_t>(r)] + d.phi_t(j.row + r)));
+  }
+  return worst;
 }
 
 /// Energies at the state: kinetic, gravity potential, elastic (modes) and springs.

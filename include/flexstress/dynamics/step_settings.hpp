@@ -106,6 +106,13 @@ struct ImplicitSettings {
   /// bench/accuracy_vs_time. It is also how a model passes singular configurations, where
   /// the multipliers are undefined and their update stalls (docs/dynamics.md, IFToMM A02).
   bool accept_at_iteration_limit = false;
+  /// A step whose Newton iteration diverges or does not converge is retried in halves, and a
+  /// failing half in halves again, down to step / 2^max_step_halvings; the step still ends at
+  /// t + step, so a fixed-step caller keeps its clock. Only hard steps pay (counted in
+  /// StepStatistics::split_steps and substeps). 0: such a step fails at once. On the random
+  /// mechanisms (tests/model/test_random_mechanisms.cpp) this turns most failed steps of
+  /// fast, violent motions into converged ones.
+  int max_step_halvings = 4;
 };
 
 struct StepStatistics {
@@ -116,6 +123,8 @@ struct StepStatistics {
   int last_factorizations = 0;
   long over_budget = 0;        ///< steps kept at the iteration limit (accept_at_iteration_limit)
   long drift_projections = 0;  ///< projections made because the velocities drifted
+  long split_steps = 0;        ///< steps retried in pieces (max_step_halvings)
+  long substeps = 0;           ///< the pieces those steps took
   /// The last step's final Newton correction over its tolerance: at most 1 when it converged,
   /// how far from converged a step kept at the budget is.
   double last_correction = 0;

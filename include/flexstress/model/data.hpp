@@ -84,6 +84,11 @@ struct Data {
     /// lambda_last: the augmented Lagrangian's lambda* at the end of the last step (the next
     /// step starts from it; d.lambda is the multipliers, lambda* + alpha Phi).
     VectorX e, lambda_star, lambda_last, lambda_prev, lambda_save;
+    /// The state at the start of a step retried in pieces (max_step_halvings), restored when
+    /// a piece fails: coordinates, velocities, accelerations, multipliers and their history.
+    VectorX q_split, v_split, vd_split, a_split, vd_prev_split, lambda_split, lambda_last_split,
+        lambda_prev_split;
+    std::vector<HydraulicState<Scalar>> force_states_split;
   } integrator;
 
   /// The explicit integrator's stages (explicit_step): stage velocities and accelerations.
@@ -120,6 +125,7 @@ struct Data {
     revision = 0;
     force_states.clear();
     for (const auto& f : model.forces()) force_states.push_back(f.initial_state);
+    integrator.force_states_split = force_states;  // its storage, for split steps
     outputs.setZero(model.num_outputs());
     meters.clear();
     for (const auto& m : model.meters()) meters.push_back(m.prototype);
@@ -154,7 +160,10 @@ struct Data {
       x->setZero(nv);
     in.q_n.setZero(model.num_coordinates());
     in.q_save.setZero(model.num_coordinates());
-    for (VectorX* x : {&in.e, &in.lambda_star, &in.lambda_last, &in.lambda_prev, &in.lambda_save})
+    in.q_split.setZero(model.num_coordinates());
+    for (VectorX* x : {&in.v_split, &in.vd_split, &in.a_split, &in.vd_prev_split}) x->setZero(nv);
+    for (VectorX* x : {&in.e, &in.lambda_star, &in.lambda_last, &in.lambda_prev, &in.lambda_save,
+                       &in.lambda_split, &in.lambda_last_split, &in.lambda_prev_split})
       x->setZero(nc);
     for (int k = 0; k < 4; ++k) {
       rk4.v[static_cast<std::size_t>(k)].setZero(nv);

@@ -25,6 +25,7 @@ namespace {
 struct OperatorOutcome {
   double lift = 0, duration = 0, hot_max = -1e300, hot_min = 1e300, damage = 0;
   long steps = 0;
+  BudgetCount budget;  // steps kept at --newton-budget
   StepStatus status = StepStatus::ok;
   std::string error;
 };
@@ -71,8 +72,10 @@ int run_operators(const RunOptions& o, int first, int count, unsigned threads) {
     }
     const auto steps = static_cast<long>(std::ceil(r.duration / o.step));
     for (long i = 0; i < steps; ++i) {
-      r.status = step(crane.model, d);
-      if (r.status != StepStatus::ok) return;
+      if (const StepStatus st = step(crane.model, d); !r.budget.keep(st, d.statistics)) {
+        r.status = st;
+        return;
+      }
       (void)evaluate_outputs(crane.model, d);
       const double hot = output_value(d, crane.output(hot_row)) / 1e6;
       r.hot_max = std::max(r.hot_max, hot);
@@ -97,6 +100,7 @@ int run_operators(const RunOptions& o, int first, int count, unsigned threads) {
               count, first, used, o.crane.modes);
   long steps = 0, failed = 0;
   double total = 0;
+  BudgetCount budget;
   for (std::size_t j = 0; j < out.size(); ++j) {
     const OperatorOutcome& r = out[j];
     const int k = first + static_cast<int>(j);
@@ -108,6 +112,7 @@ int run_operators(const RunOptions& o, int first, int count, unsigned threads) {
     }
     steps += r.steps;
     total += r.damage;
+    budget.add(r.budget);
     std::printf(
         "  operator %d: lift %.4f m in %.3f s, hot spot %.3f to %.3f MPa, damage per cycle "
         "%.6g\n",
@@ -120,6 +125,7 @@ int run_operators(const RunOptions& o, int first, int count, unsigned threads) {
                  count);
     return 1;
   }
+  print_budget(o, budget, steps);
   std::printf("operators: %d\n", count);
   std::printf("threads: %u\n", used);
   std::printf("batch_wall_s: %.3f\n", wall);
@@ -164,6 +170,7 @@ int run_game_loop(const RunOptions& o, double render_hz, bool realtime) {
   const VectorXd p_zero = VectorXd::Zero(p_prev.size());
   double accumulator = 0.0, hot = 0.0, largest_deflection = 0.0;
   long frames = 0, steps = 0, most_steps = 0;
+  BudgetCount budget;  // steps kept at --newton-budget
   bool failed = false;
   const bool hud = !o.quiet && ::isatty(STDERR_FILENO);
   auto next_frame = Clock::now();
@@ -186,7 +193,7 @@ int run_game_loop(const RunOptions& o, double render_hz, bool realtime) {
       r_prev = body_position(model, d, cr.boom_body);
       theta_prev = body_orientation(model, d, cr.boom_body);
       p_prev = modal_coordinates(model, d, cr.boom_body);
-      if (const StepStatus st = step(model, d); st != StepStatus::ok) {
+      if (const StepStatus st = step(model, d); !budget.keep(st, d.statistics)) {
         std::fprintf(stderr, "error: step at t = %g s: %s\n", d.t, to_string(st));
         failed = true;
         break;
@@ -230,6 +237,7 @@ int run_game_loop(const RunOptions& o, double render_hz, bool realtime) {
       static_cast<long>(shape->size()));
   std::printf("  largest tip deflection on screen %.3f mm; damage per work cycle %.6g\n",
               largest_deflection, damage);
+  print_budget(o, budget, steps);
   std::printf("frames: %ld\n", frames);
   std::printf("steps: %ld\n", steps);
   std::printf("max_steps_per_frame: %ld\n", most_steps);

@@ -84,7 +84,22 @@ Data<double> start_data(const Crane& cr, const RunOptions& o) {
   d.settings.step = o.step;
   d.settings.acceleration_tolerance = o.tolerance;
   d.settings.refresh_workspace = false;  // nothing reads the workspace after a step
+  if (o.newton_budget > 0) {
+    d.settings.max_iterations = o.newton_budget;
+    d.settings.accept_at_iteration_limit = true;
+  }
   return d;
+}
+
+void print_budget(const RunOptions& o, const BudgetCount& b, long steps) {
+  if (o.newton_budget <= 0) return;
+  std::printf(
+      "  Newton budget %d iterations: %ld of %ld steps kept at it, the largest final correction "
+      "%.3g x the tolerance\n",
+      o.newton_budget, b.steps, steps, b.largest_correction);
+  std::printf("newton_budget: %d\n", o.newton_budget);
+  std::printf("steps_at_budget: %ld\n", b.steps);
+  std::printf("budget_correction_max: %.3g\n", b.largest_correction);
 }
 
 int run(const RunOptions& o) {
@@ -143,13 +158,14 @@ int run(const RunOptions& o) {
   VectorXd p_peak = modal_coordinates(model, d, cr.boom_body);
   const bool progress = !o.quiet && ::isatty(STDERR_FILENO);
   long failed_at = -1;
+  BudgetCount budget;  // steps kept at --newton-budget
   int most_iterations = 0;
   double largest_velocity_violation = 0;
   for (long i = 0; i < steps; ++i) {
     const auto a = Clock::now();
     const StepStatus st = step(model, d);
     const auto b = Clock::now();
-    if (st != StepStatus::ok) {
+    if (!budget.keep(st, d.statistics)) {
       failed_at = i;
       std::fprintf(stderr, "error: step %ld at t = %g s: %s%s%s\n", i, d.t, to_string(st),
                    d.message[0] ? ": " : "", d.message.data());
@@ -207,6 +223,11 @@ int run(const RunOptions& o) {
                  "error: the run stopped at step %ld of %ld; %s/crane_history.csv holds "
                  "the history up to there\n",
                  failed_at, steps, o.output.c_str());
+    if (o.newton_budget > 0)
+      std::fprintf(stderr,
+                   "  %ld steps before it were kept at the Newton budget of %d, the largest "
+                   "final correction %.3g x the tolerance\n",
+                   budget.steps, o.newton_budget, budget.largest_correction);
     return 1;
   }
   // The sub-model at the peak, for ParaView (and docs/crane.md's picture).
@@ -233,10 +254,10 @@ int run(const RunOptions& o) {
   const double steps_taken = static_cast<double>(std::max<std::size_t>(1, step_us.size()));
   std::printf(
       "  stress recovery %.0f ns per step for %d outputs; %.2f Newton iterations/step (at most "
-      "%d), %.3f factorizations/step\n",
+      "%d), %.3f factorizations/step, %ld steps split\n",
       percentile(recovery_ns, 0.5), model.num_outputs(),
       static_cast<double>(d.statistics.iterations) / steps_taken, most_iterations,
-      static_cast<double>(d.statistics.factorizations) / steps_taken);
+      static_cast<double>(d.statistics.factorizations) / steps_taken, d.statistics.split_steps);
   std::printf("  joints: largest velocity violation |B v + Phi_t| %.3g over the cycle\n",
               largest_velocity_violation);
   std::printf(
@@ -247,6 +268,7 @@ int run(const RunOptions& o) {
   std::printf("  fatigue: IIW FAT 100 (Haibach), repeating-history closure per work cycle\n");
   std::printf("  outputs in %s/: crane_history.csv, detail_d_peak.vtu, crane_history.png\n",
               o.output.c_str());
+  print_budget(o, budget, static_cast<long>(step_us.size()));
   std::printf("precompute_ms: %.1f\n", precompute_ms);
   std::printf("steps: %zu\n", step_us.size());
   std::printf("step_us_median: %.2f\n", percentile(step_us, 0.5));

@@ -3,6 +3,7 @@
 // and the game loop (crane_programs.cpp), and the export for the C interface (crane_export.cpp).
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -19,9 +20,35 @@ struct RunOptions {
   /// Newton tolerance in m/s^2 (ImplicitSettings::acceleration_tolerance). 1e-3 gives the same
   /// stress history as the default in fewer Newton iterations (docs/accuracy-vs-time.md).
   double tolerance = 1e-5;
+  /// Real-time Newton budget (--newton-budget): at most this many iterations per step, a step
+  /// that reaches them kept at its last iterate (ImplicitSettings::accept_at_iteration_limit).
+  /// 0: the integrator's limit, at which a step fails.
+  int newton_budget = 0;
   bool quiet = false;
   std::string stroke_file, output = "crane-out";
 };
+
+/// The steps a run kept at the Newton budget and the largest final Newton correction among
+/// them, over its tolerance (StepStatistics::last_correction: 1 is converged).
+struct BudgetCount {
+  long steps = 0;
+  double largest_correction = 0;
+  /// Whether the run goes on after a step that returned `st`: converged, or kept at the budget
+  /// (counted).
+  bool keep(StepStatus st, const StepStatistics& s) {
+    if (st != StepStatus::budget_reached) return st == StepStatus::ok;
+    ++steps;
+    largest_correction = std::max(largest_correction, s.last_correction);
+    return true;
+  }
+  void add(const BudgetCount& other) {
+    steps += other.steps;
+    largest_correction = std::max(largest_correction, other.largest_correction);
+  }
+};
+/// With a budget (of `steps` steps run): a summary line and the "key: value" lines
+/// newton_budget, steps_at_budget and budget_correction_max.
+void print_budget(const RunOptions& o, const BudgetCount& b, long steps);
 
 /// The crane for the run's options; its error, if any, goes to stderr.
 std::optional<Crane> build_crane(const RunOptions& o);

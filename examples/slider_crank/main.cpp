@@ -9,8 +9,13 @@
 //                [--crank-axial-inertia RATIO] [--reference FILE]
 //                [--step H] [--project-velocities] [--project-accelerations]
 //                [--no-reuse-factorization] [--no-corotate] [--tolerance A] [--penalty F]
-//                [--rho R] [--max-iterations N] [--accept-at-limit] [--no-extrapolate]
-//                [--no-extrapolate-predictor] [--no-extrapolate-multipliers]
+//                [--rho R] [--max-iterations N] [--accept-at-limit] [--newton-budget N]
+//                [--no-extrapolate] [--no-extrapolate-predictor]
+//                [--no-extrapolate-multipliers]
+//
+// --newton-budget N: a real-time budget, --max-iterations N with --accept-at-limit: a step that
+// reaches N iterations keeps its last iterate and the run goes on; the summary counts those
+// steps and gives the largest final correction among them over the tolerance (1: converged).
 //
 // The rod's out-of-plane velocities, which the joints forbid, grow from round-off; the
 // defaults project them when they drift (ImplicitSettings::velocity_drift_limit). Over runs
@@ -79,8 +84,11 @@ int usage() {
          "                    [--project-velocities] [--project-accelerations]\n"
          "                    [--no-reuse-factorization] [--no-corotate] [--tolerance A]\n"
          "                    [--penalty F] [--rho R] [--max-iterations N]\n"
-         "                    [--accept-at-limit] [--no-extrapolate]\n"
-         "                    [--no-extrapolate-predictor] [--no-extrapolate-multipliers]\n";
+         "                    [--accept-at-limit] [--newton-budget N] [--no-extrapolate]\n"
+         "                    [--no-extrapolate-predictor] [--no-extrapolate-multipliers]\n"
+         "  --newton-budget N: at most N Newton iterations per step; a step that reaches\n"
+         "  them keeps its last iterate and the run goes on (--max-iterations N with\n"
+         "  --accept-at-limit); the summary counts the steps kept at the budget\n";
   return 2;
 }
 
@@ -147,6 +155,10 @@ int main(int argc, char** argv) {
     } else if (a == "--accept-at-limit") {
       settings.accept_at_iteration_limit = true;
       changed.push_back(a);
+    } else if (a == "--newton-budget" && has_value) {
+      settings.max_iterations = std::atoi(argv[++i]);
+      settings.accept_at_iteration_limit = true;
+      changed.push_back(a + " " + argv[i]);
     } else if (a == "--no-extrapolate-multipliers") {
       settings.extrapolate_multipliers = false;
       changed.push_back(a);
@@ -160,7 +172,8 @@ int main(int argc, char** argv) {
       return usage();
     }
   }
-  if (!(duration > 0) || !(settings.step > 0) || modes < 1) return usage();
+  if (!(duration > 0) || !(settings.step > 0) || modes < 1 || settings.max_iterations < 1)
+    return usage();
 
   auto rod = slider_crank::make_rod(spec);
   if (!rod) return std::cerr << "slider_crank: " << rod.error().what() << "\n", 1;
@@ -192,11 +205,16 @@ int main(int argc, char** argv) {
   step_us.reserve(static_cast<std::size_t>(steps));
   std::string outcome = "completed";
   double peak = 0, t_peak = 0, max_error = 0, final_deflection = 0;
+  long at_budget = 0;            // steps kept at the iteration limit (accept_at_iteration_limit)
+  double budget_correction = 0;  // the largest final correction of one, over the tolerance
   for (long k = 0; k < steps; ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     const StepStatus st = step(s.model, d);
     const auto t1 = std::chrono::steady_clock::now();
-    if (st != StepStatus::ok) {
+    if (st == StepStatus::budget_reached) {
+      ++at_budget;
+      budget_correction = std::max(budget_correction, d.statistics.last_correction);
+    } else if (st != StepStatus::ok) {
       char buf[256];
       std::snprintf(buf, sizeof buf,
                     "failed at step %ld (t = %.6g s -> %.6g s): %s; last iterations %d, "
@@ -232,6 +250,11 @@ int main(int argc, char** argv) {
   std::printf("iterations_per_step: %.3f\n", static_cast<double>(stats.iterations) / n);
   std::printf("factorizations_per_step: %.3f\n", static_cast<double>(stats.factorizations) / n);
   std::printf("drift_projections: %ld\n", stats.drift_projections);
+  if (settings.accept_at_iteration_limit) {
+    std::printf("newton_budget: %d\n", settings.max_iterations);
+    std::printf("steps_at_budget: %ld\n", at_budget);
+    std::printf("budget_correction_max: %.3g\n", budget_correction);
+  }
   std::printf("max_abs_deflection_m: %.6e\n", peak);
   std::printf("t_max_abs_deflection: %.6g\n", t_peak);
   std::printf("final_deflection_m: %.6e\n", final_deflection);

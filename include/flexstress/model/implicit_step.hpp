@@ -513,14 +513,14 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d) {
   d.a = ((Scalar(1) - in.alpha_f) * d.v_dot + in.alpha_f * in.vd_n - in.alpha_m * in.a_n) /
         (Scalar(1) - in.alpha_m);
   if (max_abs(d.phi) > s.violation_limit) {
-    detail::explain_violation(model, d, d.phi, "position");
+    detail::explain_violation(model, d, d.phi, "position", kept_at_limit);
     return StepStatus::constraint_violation;
   }
   if (project) {
     jacobian_times(model, d, d.v, in.e);
     in.e += d.phi_t;
     if (max_abs(in.e) > s.violation_limit * (Scalar(1) + max_abs(d.v))) {
-      detail::explain_violation(model, d, in.e, "velocity");
+      detail::explain_violation(model, d, in.e, "velocity", kept_at_limit);
       return StepStatus::constraint_violation;
     }
   }

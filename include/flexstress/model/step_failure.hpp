@@ -71,17 +71,20 @@ Index worst_constraint_row(const Data<Scalar>& d, Scalar& violation) {
 
 /// Writes why the step from time t_n failed after `iterations` Newton iterations (`size` the
 /// last correction, `tolerance` its limit); the Data still holds the failed iterate.
-/// A step that converged but left a joint violated beyond settings.violation_limit (kept, as
-/// constraint_violation says): which joint, by how much, in positions or velocities.
+/// A step that converged (or was kept at the Newton budget) but left a joint violated beyond
+/// settings.violation_limit (kept, as constraint_violation says): which joint, by how much, in
+/// positions or velocities.
 template <class Scalar>
 void explain_violation(const Model<Scalar>& model, Data<Scalar>& d,
-                       const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& rows, const char* what) {
+                       const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& rows, const char* what,
+                       bool at_budget) {
   Index row = 0;
   const Scalar v = rows.size() > 0 ? rows.cwiseAbs().maxCoeff(&row) : Scalar(0);
   const int k = rows.size() > 0 ? model.joint_of_row(static_cast<int>(row)) : -1;
   std::snprintf(d.message.data(), d.message.size(),
-                "step to t = %g: converged, but joint '%s' is off by %.3g in %s (limit %.3g)",
+                "step to t = %g: %s, but joint '%s' is off by %.3g in %s (limit %.3g)",
                 static_cast<double>(d.t),
+                at_budget ? "kept at the Newton budget (not converged)" : "converged",
                 k >= 0 ? model.joints()[static_cast<std::size_t>(k)].name.c_str() : "?",
                 static_cast<double>(v), what, static_cast<double>(d.settings.violation_limit));
 }

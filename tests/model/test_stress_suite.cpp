@@ -1,9 +1,10 @@
-// The stress suite: mechanisms unlike the crane, each run on the integrator's defaults
-// (ImplicitSettings{}, nothing tuned per case) and compared with a converged run of the same
-// model (h / 8 and a Newton tolerance 100 times tighter). A case passes when the default run
+// The stress suite: mechanisms unlike the crane, and the crane, each run on the integrator's
+// defaults (ImplicitSettings{}, nothing tuned per case) and compared with a converged run of the
+// same model (h / 8 and a Newton tolerance 100 times tighter). A case passes when the default run
 // reaches its end without a failed step and stays within 1 % of the reference: the largest
 // difference over the history of the quantity that matters, over the largest magnitude of that
-// quantity. Newton iterations and factorizations per step are reported.
+// quantity. Newton iterations and factorizations per step are reported. A case that fails on the
+// defaults is kept, skipped (doctest::skip; --no-skip runs it), with what fails in its comment.
 //
 // The quantity is one the default step resolves: the swing angle of a flexible pendulum, not its
 // tip's vibration. A beam released from rest rings in all its modes, up to 720 Hz here; at
@@ -12,6 +13,7 @@
 // radian, adds up over hundreds of periods. The tip's vibration then converges at second order
 // (an error of 84 %, 25 % and 6.4 % at h, h / 2 and h / 4 with three modes) but is not within
 // 1 % at 1 ms.
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -21,6 +23,8 @@
 
 #include <flexstress/model/all.hpp>
 
+#include "../../examples/crane/crane_model_impl.hpp"
+#include "../../examples/four_bar_chain/four_bar_chain.hpp"
 #include "../../examples/spin_up_beam/spin_up_model.hpp"
 #include "support/beam_fixtures.hpp"
 
@@ -37,6 +41,9 @@ struct SuiteCase {
   std::function<Status(Data<double>&)> start;
   std::function<double(const Data<double>&)> quantity;
   double duration = 1.0;
+  /// An independent reference, the quantity at the end of each default step, for a case whose
+  /// converged run cannot be made; empty: the converged run is the reference.
+  std::vector<double> reference;
 };
 
 struct Run {
@@ -74,16 +81,29 @@ Run run(const SuiteCase& c, const ImplicitSettings<double>& settings) {
   return r;
 }
 
+/// What check_case measured: the quantity at the end of each run.
+struct Outcome {
+  double reference_end = 0, default_end = 0;
+};
+
 /// Runs a case on the defaults and against its reference, reports and checks it.
-void check_case(const SuiteCase& c) {
+Outcome check_case(const SuiteCase& c) {
   CAPTURE(c.name);
+  const auto started = std::chrono::steady_clock::now();
   const ImplicitSettings<double> defaults;
   ImplicitSettings<double> tight = defaults;
-  tight.step = defaults.step / 8;
-  tight.acceleration_tolerance = tight.acceleration_tolerance / 100;
-  const Run ref = run(c, tight);
-  REQUIRE_MESSAGE(ref.finished, "the reference failed: " << ref.failure);
+  Run ref;
+  if (c.reference.empty()) {
+    tight.step = defaults.step / 8;
+    tight.acceleration_tolerance = tight.acceleration_tolerance / 100;
+    ref = run(c, tight);
+    REQUIRE_MESSAGE(ref.finished, "the reference failed: " << ref.failure);
+  } else {
+    ref.y = c.reference;
+  }
   const Run def = run(c, defaults);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const auto& s = def.statistics;
   const double iterations = s.steps > 0 ? double(s.iterations) / double(s.steps) : 0.0;
   const double factorizations = s.steps > 0 ? double(s.factorizations) / double(s.steps) : 0.0;
@@ -99,9 +119,13 @@ void check_case(const SuiteCase& c) {
   MESSAGE(c.name << ": " << (def.finished ? "finished" : "FAILED: " + def.failure)
                  << ", iterations/step " << iterations << ", factorizations/step " << factorizations
                  << ", largest difference to the reference " << error << " of " << scale << " ("
-                 << 100 * error / scale << " %)");
+                 << 100 * error / scale << " %), both runs " << seconds << " s");
   CHECK(def.finished);
   CHECK(error <= 0.01 * scale);
+  Outcome o;
+  if (!ref.y.empty()) o.reference_end = ref.y.back();
+  if (!def.y.empty()) o.default_end = def.y.back();
+  return o;
 }
 
 // A 2 m steel RHS 40 x 20 x 2 mm beam (8 modes): slender enough that its own weight and spin
@@ -174,6 +198,340 @@ TEST_CASE("stress suite: the spin-up beam spun up in 5 s instead of 15") {
     return spin_up::tip_deflection(*built, d, spec.length).in_plane;
   };
   c.duration = 6.0;
+  check_case(c);
+}
+
+// Andrews' squeezing mechanism (Hairer & Wanner, Solving ODEs II, sec. VII.7; problem "andrews"
+// of the IVP Test Set, F. Mazzia, C. Magherini, F. Iavernaro, andrews.f): seven rigid bodies in a
+// plane (no gravity), three closed loops through the point E, a stiff spring (c0 = 4530 N/m)
+// from the ground to body 3 and a constant torque of 0.033 N m on the crank; the crank spins up to
+// 1140 rad/s in 0.03 s. The Test Set's parameters and start, with its coordinates: beta, the
+// crank's angle; theta, the rod's from the crank; gamma, delta and epsilon, the angles of bodies
+// 3, 5 and 7 about their ground pivots B and A; phi and Omega, those of bodies 4 and 6 from
+// bodies 5 and 7. Each body's frame is at a pivot and turns by its absolute angle about z; the
+// ten hinges are 3D revolutes about z (a planar model: redundant). A centre of mass off the line
+// of a body pivoted on the ground enters the Test Set's equations only through its distance
+// from the pivot, which is what is kept here. Out of the plane each body has the inertia it has
+// about z (nothing moves it there).
+namespace {
+namespace andrews {
+constexpr double m1 = .04325, m2 = .00365, m3 = .02373, m4 = .00706, m5 = .07050, m6 = .00706,
+                 m7 = .05498;
+constexpr double i1 = 2.194e-6, i2 = 4.410e-7, i3 = 5.255e-6, i4 = 5.667e-7, i5 = 1.169e-5,
+                 i6 = 5.667e-7, i7 = 1.912e-5;
+constexpr double xa = -.06934, ya = -.00227, xb = -0.03635, yb = .03273, xc = .014, yc = .072;
+constexpr double d = 28e-3, da = 115e-4, e = 2e-2, ea = 1421e-5, rr = 7e-3, ra = 92e-5;
+constexpr double ss = 35e-3, sa = 1874e-5, sb = 1043e-5, sc = 18e-3, sd = 2e-2;
+constexpr double ta = 2308e-5, tb = 916e-5, u = 4e-2, ua = 1228e-5, ub = 449e-5;
+constexpr double zf = 2e-2, zt = 4e-2, fa = 1421e-5, mom = 33e-3, c0 = 4530, l0 = 7785e-5;
+// The Test Set's consistent start (andrews.f, INITIAL), at rest.
+constexpr double beta = -0.0617138900142764496358948458001, theta = 0,
+                 gamma = 0.455279819163070380255912382449, phi = 0.222668390165885884674473185609,
+                 delta = 0.487364979543842550225598953530,
+                 omega = -0.222668390165885884674473185609,
+                 epsilon = 1.23054744454982119249735015568;
+// The Test Set's reference at t = 0.03 s (andrews.f, SOLN: PSIDE at tolerances 1e-14).
+constexpr double beta_end = 0.1581077119629904e+2;
+
+void torque(double /*t*/, const double* /*position*/, const double* /*velocity*/, double* /*force*/,
+            double* moment, void* /*user*/) {
+  moment[2] = mom;
+}
+
+EulerParameters<double> turned(double angle) {
+  return from_rotation_matrix<double>(Eigen::AngleAxisd(angle, Vector3d::UnitZ()).matrix());
+}
+
+struct Squeezer {
+  Model<double> model;
+  BodyId crank;
+};
+
+Result<Squeezer> make_squeezer() {
+  ModelBuilder<double> b;
+  const auto body = [&](const char* name, double mass, double inertia, Vector3d com, Vector3d at,
+                        double angle) {
+    const BodyId id =
+        b.add_rigid_body(name, mass, com, Vector3d(inertia, inertia, inertia).asDiagonal());
+    b.set_initial_pose(id, at, turned(angle));
+    return id;
+  };
+  const Vector3d o(0, 0, 0), a(xa, ya, 0), bb(xb, yb, 0);
+  const Vector3d f(rr * std::cos(beta), rr * std::sin(beta), 0);
+  const Vector3d g = a + zt * Vector3d(std::cos(delta), std::sin(delta), 0);
+  const Vector3d h = a + u * Vector3d(std::sin(epsilon), -std::cos(epsilon), 0);
+  // Frames: 1 at O along OF; 2 at F (E at -d on its x); 3 at B (E at -ss on its y); 4 at G (E at
+  // -e on its y); 5 at A (G at zt on its x); 6 at H (E at zf on its x); 7 at A (H at -u on y).
+  Squeezer s;
+  s.crank = body("1 crank", m1, i1, Vector3d(ra, 0, 0), o, beta);
+  const BodyId rod = body("2 rod", m2, i2, Vector3d(-da, 0, 0), f, beta + theta);
+  const BodyId b3 = body("3", m3, i3, Vector3d(sa, sb, 0), bb, gamma);
+  const BodyId b4 = body("4", m4, i4, Vector3d(0, -(e - ea), 0), g, phi + delta);
+  const BodyId b5 = body("5", m5, i5, Vector3d(ta, tb, 0), a, delta);
+  const BodyId b6 = body("6", m6, i6, Vector3d(zf - fa, 0, 0), h, omega + epsilon);
+  const BodyId b7 = body("7", m7, i7, Vector3d(ua, ub, 0), a, epsilon);
+  const auto at = [&](BodyId on, double x, double y) {
+    return b.add_marker("pin", on, -1, Vector3d(x, y, 0));
+  };
+  const auto ground = [&](const Vector3d& p) { return b.add_marker("pivot", b.ground(), -1, p); };
+  const MarkerId crank_root = at(s.crank, 0, 0), rod_e = at(rod, -d, 0);
+  b.add_joint("O", JointKind::revolute, ground(o), crank_root);
+  b.add_joint("F", JointKind::revolute, at(s.crank, rr, 0), at(rod, 0, 0));
+  b.add_joint("E 2-3", JointKind::revolute, rod_e, at(b3, 0, -ss));
+  b.add_joint("E 2-4", JointKind::revolute, rod_e, at(b4, 0, -e));
+  b.add_joint("E 2-6", JointKind::revolute, rod_e, at(b6, zf, 0));
+  b.add_joint("B", JointKind::revolute, ground(bb), at(b3, 0, 0));
+  b.add_joint("A 5", JointKind::revolute, ground(a), at(b5, 0, 0));
+  b.add_joint("A 7", JointKind::revolute, ground(a), at(b7, 0, 0));
+  b.add_joint("G", JointKind::revolute, at(b5, zt, 0), at(b4, 0, 0));
+  b.add_joint("H", JointKind::revolute, at(b7, 0, -u), at(b6, 0, 0));
+  SpringDamperParams<double> spring;
+  spring.stiffness = c0;
+  spring.rest_length = l0;
+  b.add_spring_damper("spring", ground(Vector3d(xc, yc, 0)), at(b3, sd, -sc), spring);
+  b.add_point_load("drive", crank_root, &torque);
+  auto m = b.finalize();
+  if (!m) return m.error();
+  s.model = std::move(*m);
+  return s;
+}
+
+/// Planar angle of a body's x axis.
+double heading(const Model<double>& m, const Data<double>& data, BodyId body) {
+  const Matrix3d r = rotation_matrix(body_orientation(m, data, body));
+  return std::atan2(r(1, 0), r(0, 0));
+}
+}  // namespace andrews
+}  // namespace
+
+// Fails on the defaults, so skipped for now: the run finishes (13 Newton iterations and 4.9
+// factorizations per step) but ends at beta = 12.80 rad against the reference run's 15.80, a
+// difference of 19 % of the largest |beta|. The crank turns 2.5 times in 0.03 s and reaches
+// 1140 rad/s, turning up to 1.1 rad per 1 ms step (30 steps in all). The model agrees with the
+// Test Set: beta(0.03 s) converges at second order to its 15.8108 (-1.76 % at h = 0.5 ms, -0.35 %
+// at 0.25 ms, -0.086 % at 0.125 ms, the reference run, -0.021 % at 62.5 us, -0.0053 % at
+// 31.25 us).
+TEST_CASE("stress suite: Andrews' squeezing mechanism, three loops and a stiff spring" *
+          doctest::skip()) {
+  const auto s = andrews::make_squeezer();
+  REQUIRE_MESSAGE(s.ok(), s.error().what());
+  double beta = andrews::beta;  // the crank's angle, counted over its turns
+  SuiteCase c;
+  c.name = "Andrews' squeezing mechanism";
+  c.model = &s->model;
+  c.start = [&](Data<double>& d) {
+    beta = andrews::beta;
+    return initialize(s->model, d);
+  };
+  c.quantity = [&](const Data<double>& d) {
+    beta += std::remainder(andrews::heading(s->model, d, s->crank) - beta, 2 * 3.14159265358979);
+    return beta;
+  };
+  c.duration = 0.03;
+  const Outcome out = check_case(c);
+  MESSAGE("beta(0.03 s): defaults "
+          << out.default_end << ", reference run " << out.reference_end << ", Test Set "
+          << andrews::beta_end << " (defaults " << 100 * (out.default_end / andrews::beta_end - 1)
+          << " %, reference run " << 100 * (out.reference_end / andrews::beta_end - 1) << " %)");
+  CHECK(std::abs(out.reference_end / andrews::beta_end - 1) < 1e-3);
+}
+
+// A flexible four-bar near a toggle position: a crank of 0.2 m turned about the ground at
+// (0, 0), the 2 m suite beam's section as a coupler of 1 m (8 modes, both pins interface nodes),
+// a rigid rocker of 0.3 m about the ground at (0.905, 0). Grashof by 0.005 m (a crank-rocker
+// next to the change-point linkage, 0.2 + 1.0 = 0.3 + 0.9): where the crank points at the
+// rocker's pivot, coupler and rocker are 8.8 degrees from collinear (the transmission angle),
+// and the pin forces grow as 1 / sin of it. The planar loop of 3D revolutes is redundant. The
+// crank is driven: it spins up smoothly from rest to 1 rev/s in 0.5 s and points at the rocker's
+// pivot at t = 0.75 s and 1.75 s. Compared: the coupler's midpoint deflection from the line
+// through its pins (at most 0.08 mm); the rocker's angle follows from the crank's through the
+// loop's kinematics (the default run is within 1e-11 rad of the reference). Driven at 3 rev/s
+// instead, the deflection rings in a vibration that 1 ms steps do not resolve: 9.6 % from the
+// reference run (against h / 16: 9.1 % at h, 11 % at h / 4, 1.9 % at h / 8).
+namespace {
+namespace four_bar {
+constexpr double crank = 0.2, coupler = 1.0, rocker = 0.3, ground = 0.905;
+constexpr double pi = 3.14159265358979323846, spin_up = 0.5;
+
+void crank_law(double t, double* out, void* user) {
+  const double rate = *static_cast<double*>(user);
+  if (t < spin_up) {  // rate(t) = rate (1 - cos(pi t / T)) / 2
+    out[0] = pi + rate * (t / 2 - spin_up / (2 * pi) * std::sin(pi * t / spin_up));
+    out[1] = rate * (1 - std::cos(pi * t / spin_up)) / 2;
+    out[2] = rate * pi / (2 * spin_up) * std::sin(pi * t / spin_up);
+  } else {
+    out[0] = pi + rate * (spin_up / 2 + (t - spin_up));
+    out[1] = rate;
+    out[2] = 0;
+  }
+}
+
+/// A slender rigid link of `length` along its x axis from its frame, 1 cm square.
+BodyId add_link(ModelBuilder<double>& b, const char* name, double mass, double length) {
+  const double transverse = mass * length * length / 12, axial = 1e-4 * mass / 6;
+  return b.add_rigid_body(name, mass, Vector3d(length / 2, 0, 0),
+                          Vector3d(axial, transverse, transverse).asDiagonal());
+}
+
+const testing::BeamBody& link() {
+  static const testing::BeamBody b =
+      testing::make_beam_body(coupler, kSection, 20, {0.0, coupler}, 4);
+  return b;
+}
+
+struct FourBar {
+  Model<double> model;
+  BodyId rocker;
+  MarkerId pin_a, pin_b, middle;  ///< on the coupler
+};
+
+/// The four-bar with its crank turned at `rate` (rad/s; read by the law while the model runs).
+Result<FourBar> make_four_bar(double* rate) {
+  // The start: crank along -x, the loop closed upwards.
+  const Vector3d p(-crank, 0, 0), o4(ground, 0, 0);
+  const double span = (o4 - p).norm();
+  const double along = (span * span + coupler * coupler - rocker * rocker) / (2 * span);
+  const Vector3d q = p + Vector3d(along, std::sqrt(coupler * coupler - along * along), 0);
+  using andrews::turned;
+  ModelBuilder<double> b;
+  FourBar f;
+  const BodyId crank_body = add_link(b, "crank", 0.5, crank);
+  b.set_initial_pose(crank_body, Vector3d::Zero(), turned(pi));
+  const BodyId coupler_body = b.add_flexible_body("coupler", link().data, 8);
+  b.set_initial_pose(coupler_body, p, turned(std::atan2(q.y() - p.y(), q.x() - p.x())));
+  f.rocker = add_link(b, "rocker", 0.8, rocker);
+  b.set_initial_pose(f.rocker, o4, turned(std::atan2(q.y() - o4.y(), q.x() - o4.x())));
+  const MarkerId pivot = b.add_marker("crank pivot", b.ground(), -1);
+  const MarkerId crank_root = b.add_marker("crank root", crank_body, -1);
+  f.pin_a = b.add_marker("coupler at crank", coupler_body, link().interface_nodes[0]);
+  f.pin_b = b.add_marker("coupler at rocker", coupler_body, link().interface_nodes[1]);
+  f.middle = b.add_marker("coupler middle", coupler_body, link().line.node_at(coupler / 2));
+  b.add_joint("crank pivot", JointKind::revolute, pivot, crank_root);
+  b.add_joint("crank pin", JointKind::revolute,
+              b.add_marker("crank pin", crank_body, -1, Vector3d(crank, 0, 0)), f.pin_a);
+  b.add_joint("rocker pin", JointKind::revolute, f.pin_b,
+              b.add_marker("rocker pin", f.rocker, -1, Vector3d(rocker, 0, 0)));
+  b.add_joint("rocker pivot", JointKind::revolute, b.add_marker("rocker pivot", b.ground(), -1, o4),
+              b.add_marker("rocker root", f.rocker, -1));
+  b.add_driver("crank drive", JointKind::revolute_driver, pivot, crank_root,
+               MotionLaw<double>::from_callback(&crank_law, rate));
+  auto m = b.finalize();
+  if (!m) return m.error();
+  f.model = std::move(*m);
+  return f;
+}
+
+/// The coupler's midpoint deflection from the line through its pins, in the plane.
+double midpoint_deflection(const FourBar& f, const Data<double>& d) {
+  const Vector3d a = marker_frame(f.model, d, f.pin_a).origin;
+  const Vector3d e = marker_frame(f.model, d, f.pin_b).origin;
+  const Vector3d x = marker_frame(f.model, d, f.middle).origin - a, t = (e - a).normalized();
+  return t.x() * x.y() - t.y() * x.x();
+}
+}  // namespace four_bar
+}  // namespace
+
+TEST_CASE("stress suite: a flexible four-bar with redundant hinges passing near a toggle") {
+  static double rate = 2 * four_bar::pi;  // 1 rev/s
+  const auto f = four_bar::make_four_bar(&rate);
+  REQUIRE_MESSAGE(f.ok(), f.error().what());
+  SuiteCase c;
+  c.name = "flexible four-bar near a toggle, coupler midpoint deflection";
+  c.model = &f->model;
+  c.start = [&](Data<double>& d) { return initialize(f->model, d); };
+  c.quantity = [&](const Data<double>& d) { return four_bar::midpoint_deflection(*f, d); };
+  c.duration = 2.0;
+  check_case(c);
+}
+
+// IFToMM A02, the N four-bar mechanism with N = 40 (Gonzalez, Dopico, Lugris, Cuadrado, Multibody
+// Syst. Dyn. 16 (2006) 179-190; examples/four_bar_chain has the model): 81 links of 1 m and
+// 1 kg, 121 revolutes, 605 equations on 486 coordinates; the chain passes singular
+// configurations (all cranks horizontal, the mobility jumping from 1 to 41) twice per
+// revolution, first at t = 0.7216 s. Compared: the x of the first crank's tip B0 over 5 s.
+//
+// The reference is the exact motion, which keeps every crank parallel to the first and every
+// coupler horizontal: one degree of freedom, the cranks' angle phi, with
+// J phi'' = -g (41 / 2 + 40) cos phi, J = 41 (1 / 3 + a^2 / 12) + 40 kg m^2 (a = 1 cm, the
+// rods' section), phi(0) = pi / 2, phi'(0) = -1 rad/s, x = cos phi (RK4 at 10 us). The IFToMM
+// library's reference (A02_solution_data.txt, B0's x and y over 20 s) is a numerical solution
+// of the same motion.
+//
+// Fails on the defaults, so skipped for now: Newton does not converge at t = 0.675 s, 47 ms
+// before the first singular configuration ("Newton not converged in 30 iterations (correction
+// 1.12e-12, tolerance 8.99e-13)" in the step's smallest piece); up to there x is within 4.1e-7 m of
+// the exact motion. The example passes them with a penalty factor of 1e5, steps kept at the
+// iteration budget and velocity projection (four_bar_chain::make_chain, docs/dynamics.md), which
+// the suite's defaults replace.
+TEST_CASE("stress suite: the 40-bar chain (IFToMM A02) through its singular configurations" *
+          doctest::skip()) {
+  const auto chain = four_bar_chain::make_chain(40, 1e-3);
+  REQUIRE_MESSAGE(chain.ok(), chain.error().what());
+  SuiteCase c;
+  c.name = "IFToMM A02, 40 four-bars";
+  c.model = &chain->model;
+  c.start = [&](Data<double>& d) { return four_bar_chain::start(*chain, d); };
+  c.quantity = [&](const Data<double>& d) {
+    const BodyId first = chain->cranks.front();
+    const Matrix3d r = rotation_matrix(body_orientation(chain->model, d, first));
+    return (body_position(chain->model, d, first) + 0.5 * r.col(0)).x();
+  };
+  c.duration = 5.0;
+  const double a = 0.01, j = 41 * (1.0 / 3 + a * a / 12) + 40, load = 9.81 * (41.0 / 2 + 40);
+  const auto acceleration = [&](double phi) { return -load * std::cos(phi) / j; };
+  double phi = std::acos(0.0), w = -1.0;
+  const double h = 1e-5;
+  const long per_step = std::lround(ImplicitSettings<double>().step / h);
+  const long steps = std::lround(c.duration / ImplicitSettings<double>().step);
+  for (long k = 0; k < steps; ++k) {
+    for (long i = 0; i < per_step; ++i) {
+      const double k1p = w, k1w = acceleration(phi);
+      const double k2p = w + h / 2 * k1w, k2w = acceleration(phi + h / 2 * k1p);
+      const double k3p = w + h / 2 * k2w, k3w = acceleration(phi + h / 2 * k2p);
+      const double k4p = w + h * k3w, k4w = acceleration(phi + h * k3p);
+      phi += h / 6 * (k1p + 2 * k2p + 2 * k3p + k4p);
+      w += h / 6 * (k1w + 2 * k2w + 2 * k3w + k4w);
+    }
+    c.reference.push_back(std::cos(phi));
+  }
+  check_case(c);
+}
+
+// The paper's crane (examples/crane; docs/crane.md): the 10-mode boom with its 100 kg payload,
+// the cylinder and its rod, driven through the synthetic 11 s work cycle (lift 0.2 m, hold with
+// two corrections, lower), from static equilibrium. Compared: the boom tip's deflection from the
+// boom's tangent at its hinge A (in the plane). (The hot-spot stress would need the welded
+// detail's sub-model, examples/crane/crane_detail.cpp, which this test target does not compile.)
+TEST_CASE("stress suite: the crane's work cycle, boom tip deflection") {
+  const crane::CraneSpec spec;
+  const auto boom = crane::make_boom(spec, 10);
+  REQUIRE_MESSAGE(boom.ok(), boom.error().what());
+  ModelBuilder<double> b;
+  crane::assembly::Parts parts;
+  REQUIRE(crane::assembly::add_crane_parts(b, spec, *boom, crane::CraneOptions{}, parts).ok());
+  std::vector<double> t, stroke;
+  crane::synthetic_cycle(t, stroke);
+  for (double& s : stroke) s += (spec.b - spec.c).norm();
+  auto law = TableLaw<double>::create(t, stroke);
+  REQUIRE(law.ok());
+  b.add_driver("stroke", JointKind::prismatic_driver, parts.cylinder_origin, parts.rod_origin,
+               MotionLaw<double>::from_table(std::move(*law)));
+  const MarkerId hinge = b.add_marker("boom at A", parts.boom, boom->node_a);
+  const MarkerId tip = b.add_marker("boom tip", parts.boom, boom->line.nodes.back());
+  const auto m = b.finalize();
+  REQUIRE_MESSAGE(m.ok(), m.error().what());
+  SuiteCase c;
+  c.name = "crane work cycle, boom tip deflection";
+  c.model = &*m;
+  c.start = [&](Data<double>& d) {
+    if (Status st = solve_static_equilibrium(*m, d); !st) return st;
+    return initialize(*m, d);
+  };
+  c.quantity = [&](const Data<double>& d) {
+    const Frame<double> a = marker_frame(*m, d, hinge);
+    return (marker_frame(*m, d, tip).origin - a.origin).dot(a.axes.col(1));
+  };
+  c.duration = t.back();
   check_case(c);
 }
 

@@ -28,7 +28,8 @@ struct ImplicitSettings {
   /// position tolerance would let velocity errors g' dx ~ tol/h accumulate as an energy random
   /// walk at small h.
   Scalar acceleration_tolerance = std::is_same_v<Scalar, float> ? Scalar(1e-2) : Scalar(1e-5);
-  /// Floor of the position tolerances (round-off of coordinates of order one).
+  /// Floor of the position tolerances: the round-off of coordinates of order one, scaled by
+  /// the largest coordinate when that is larger.
   Scalar position_floor = Scalar(100) * std::numeric_limits<Scalar>::epsilon();
   /// A converged step whose violation (position or velocity) still exceeds this reports
   /// constraint_violation.

@@ -351,6 +351,9 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d) {
   in.vd_n = d.v_dot;
   in.a_n = d.a;
   const Scalar t_n = d.t;
+  // The floor is the coordinates' round-off, which grows with their size (a chain 40 m long).
+  in.tol_x = std::max(s.acceleration_tolerance / in.beta_prime,
+                      s.position_floor * std::max(Scalar(1), max_abs(in.q_n)));
   in.lambda_star = in.lambda_last;
   // Predictor: v_dot and lambda extrapolated linearly from the last two steps.
   if (in.has_previous && s.extrapolate_predictor) d.v_dot = Scalar(2) * in.vd_n - in.vd_prev;

@@ -258,6 +258,7 @@ int run(const RunOptions& o) {
       percentile(recovery_ns, 0.5), model.num_outputs(),
       static_cast<double>(d.statistics.iterations) / steps_taken, most_iterations,
       static_cast<double>(d.statistics.factorizations) / steps_taken, d.statistics.split_steps);
+  std::printf("  largest local error estimate %.3g\n", d.statistics.largest_error_estimate);
   std::printf("  joints: largest velocity violation |B v + Phi_t| %.3g over the cycle\n",
               largest_velocity_violation);
   std::printf(

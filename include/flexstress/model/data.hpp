@@ -125,7 +125,6 @@ struct Data {
     revision = 0;
     force_states.clear();
     for (const auto& f : model.forces()) force_states.push_back(f.initial_state);
-    integrator.force_states_split = force_states;  // its storage, for split steps
     outputs.setZero(model.num_outputs());
     meters.clear();
     for (const auto& m : model.meters()) meters.push_back(m.prototype);
@@ -161,6 +160,7 @@ struct Data {
     in.q_n.setZero(model.num_coordinates());
     in.q_save.setZero(model.num_coordinates());
     in.q_split.setZero(model.num_coordinates());
+    in.force_states_split = force_states;  // its storage, for split steps
     for (VectorX* x : {&in.v_split, &in.vd_split, &in.a_split, &in.vd_prev_split}) x->setZero(nv);
     for (VectorX* x : {&in.e, &in.lambda_star, &in.lambda_last, &in.lambda_prev, &in.lambda_save,
                        &in.lambda_split, &in.lambda_last_split, &in.lambda_prev_split})

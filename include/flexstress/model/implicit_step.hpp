@@ -334,10 +334,11 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
 namespace detail {
 
 /// One generalized-alpha step of size d.settings.step (step() below retries a failed one in
-/// pieces). On failure the state is left as it was before the step (except for
-/// constraint_violation, which keeps the step).
+/// pieces; with control_error, a step whose local error estimate exceeds
+/// local_error_tolerance fails too). On failure the state is left as it was before the step
+/// (except for constraint_violation, which keeps the step).
 template <class Scalar>
-StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d) {
+StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_error) {
   auto& in = d.integrator;
   auto& s = d.settings;
   // A runtime change (a joint switched): restart from the state as it is, as initialize()
@@ -476,6 +477,30 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d) {
     detail::explain_step_failure(model, d, status, t_n, it, previous, in.tol_x);
     return status;
   }
+  // Local error estimate of the converged step (Zienkiewicz & Xie, Earthquake Eng. Struct.
+  // Dyn. 20 (1991), for Newmark's method): |beta - 1/6| h^2 |v_dot(n+1) - v_dot(n)|, a
+  // displacement (m, rad; modal coordinates counted with their largest nodal translation).
+  // Above local_error_tolerance, and when the caller can still split the step (step()), the
+  // step is undone and reported as too large for the motion.
+  {
+    in.tmp = (d.v_dot - in.vd_n).cwiseProduct(in.correction_scale);
+    Index worst = 0;
+    const Scalar largest = in.tmp.size() > 0 ? in.tmp.cwiseAbs().maxCoeff(&worst) : Scalar(0);
+    const Scalar estimate = std::abs(in.beta - Scalar(1) / Scalar(6)) * h * h * largest;
+    if (control_error && s.local_error_tolerance > Scalar(0) &&
+        estimate > s.local_error_tolerance) {
+      d.q = in.q_n;
+      d.v = in.v_n;
+      d.v_dot = in.vd_n;
+      d.a = in.a_n;
+      d.t = t_n;
+      in.have_factorization = false;
+      detail::explain_local_error(model, d, t_n, estimate, worst);
+      return StepStatus::step_too_large;
+    }
+    d.statistics.largest_error_estimate =
+        std::max(d.statistics.largest_error_estimate, static_cast<double>(estimate));
+  }
   if (stale_for_next) in.have_factorization = false;
   // The multipliers of the converged equations are lambda* + alpha Phi at the final positions,
   // Phi + B dx to first order in the last correction dx (the workspace holds Phi and B of the
@@ -573,7 +598,8 @@ void restore_split_start(Data<Scalar>& d) {
 /// (except for constraint_violation, which keeps the step) and d.message says where.
 template <class Scalar>
 StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
-  const StepStatus whole = detail::step_whole(model, d);
+  const bool can_split = d.settings.max_step_halvings > 0;
+  const StepStatus whole = detail::step_whole(model, d, can_split);
   if (!detail::may_pass_in_pieces(whole) || d.settings.max_step_halvings <= 0) return whole;
   auto& in = d.integrator;
   const Scalar h = d.settings.step, t_start = d.t;
@@ -592,7 +618,8 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
     // A predictor extrapolated over steps of another size would start Newton off.
     in.has_previous = false;
     in.converged_multipliers = std::min(in.converged_multipliers, 1);
-    const StepStatus st = detail::step_whole(model, d);
+    const StepStatus st =
+        detail::step_whole(model, d, /*control_error=*/level < d.settings.max_step_halvings);
     if (st == StepStatus::ok || st == StepStatus::budget_reached) {
       ++d.statistics.substeps;
       ++pieces;

@@ -71,6 +71,26 @@ Index worst_constraint_row(const Data<Scalar>& d, Scalar& violation) {
 
 /// Writes why the step from time t_n failed after `iterations` Newton iterations (`size` the
 /// last correction, `tolerance` its limit); the Data still holds the failed iterate.
+/// A converged step undone for its local error estimate (local_error_tolerance): the estimate
+/// and where it is largest.
+template <class Scalar>
+void explain_local_error(const Model<Scalar>& model, Data<Scalar>& d, Scalar t_n, Scalar estimate,
+                         Index worst) {
+  char part[96] = "";
+  const int body = body_of_velocity(model, worst);
+  if (body >= 0) {
+    char coordinate[32];
+    const auto& b = model.bodies()[static_cast<std::size_t>(body)];
+    name_body_coordinate(worst - b.v_offset, coordinate, sizeof coordinate);
+    std::snprintf(part, sizeof part, " in body '%s' (%s)", b.name.c_str(), coordinate);
+  }
+  std::snprintf(d.message.data(), d.message.size(),
+                "step from t = %g of %g s: local error estimate %.3g above the tolerance %.3g%s",
+                static_cast<double>(t_n), static_cast<double>(d.settings.step),
+                static_cast<double>(estimate),
+                static_cast<double>(d.settings.local_error_tolerance), part);
+}
+
 /// A step that converged (or was kept at the Newton budget) but left a joint violated beyond
 /// settings.violation_limit (kept, as constraint_violation says): which joint, by how much, in
 /// positions or velocities.

@@ -15,3 +15,4 @@
 #include "flexstress/model/motion_law.hpp"
 #include "flexstress/model/outputs.hpp"
 #include "flexstress/model/readouts.hpp"
+#include "flexstress/model/step.hpp"

@@ -24,6 +24,7 @@
 #include "flexstress/model/outputs.hpp"
 #include "flexstress/model/pipeline.hpp"
 #include "flexstress/model/readouts.hpp"
+#include "flexstress/model/step.hpp"
 
 /// The mode counts the compiled library instantiates kernels for; a unit that changes
 /// FLEXSTRESS_MODE_COUNTS must not use the compiled library (ModelBuilder would differ).

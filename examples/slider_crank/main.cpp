@@ -8,8 +8,9 @@
 //                [--section planar|square] [--joints revolute|nonredundant]
 //                [--crank-axial-inertia RATIO] [--reference FILE]
 //                [--step H] [--project-velocities] [--project-accelerations]
-//                [--no-reuse-factorization] [--no-corotate] [--tolerance A] [--penalty F]
-//                [--rho R] [--max-iterations N] [--accept-at-limit] [--newton-budget N]
+//                [--no-reuse-factorization] [--no-corotate] [--tolerance A]
+//                [--error-tolerance E] [--penalty F] [--rho R] [--max-iterations N]
+//                [--accept-at-limit] [--newton-budget N]
 //                [--no-extrapolate] [--no-extrapolate-predictor]
 //                [--no-extrapolate-multipliers]
 //
@@ -83,7 +84,8 @@ int usage() {
          "                    [--crank-axial-inertia RATIO] [--reference FILE] [--step H]\n"
          "                    [--project-velocities] [--project-accelerations]\n"
          "                    [--no-reuse-factorization] [--no-corotate] [--tolerance A]\n"
-         "                    [--penalty F] [--rho R] [--max-iterations N]\n"
+         "                    [--error-tolerance E] [--penalty F] [--rho R]\n"
+         "                    [--max-iterations N]\n"
          "                    [--accept-at-limit] [--newton-budget N] [--no-extrapolate]\n"
          "                    [--no-extrapolate-predictor] [--no-extrapolate-multipliers]\n"
          "  --newton-budget N: at most N Newton iterations per step; a step that reaches\n"
@@ -142,6 +144,9 @@ int main(int argc, char** argv) {
       changed.push_back(a);
     } else if (a == "--tolerance" && has_value) {
       settings.acceleration_tolerance = std::atof(argv[++i]);
+      changed.push_back(a + " " + argv[i]);
+    } else if (a == "--error-tolerance" && has_value) {
+      settings.local_error_tolerance = std::atof(argv[++i]);
       changed.push_back(a + " " + argv[i]);
     } else if (a == "--penalty" && has_value) {
       settings.penalty_factor = std::atof(argv[++i]);

@@ -56,9 +56,11 @@ void restore_split_start(Data<Scalar>& d) {
 }  // namespace detail
 
 /// One step of size d.settings.step. Never allocates or throws. A step whose Newton iteration
-/// fails is taken again in pieces (settings.max_step_halvings): halves, and a failing half in
-/// halves, still ending at t + step. On failure the state is left as it was before the step
-/// (except for constraint_violation, which keeps the step) and d.message says where.
+/// fails, or whose local error estimate exceeds settings.local_error_tolerance, is taken again
+/// in pieces (settings.max_step_halvings): halves, and a failing half in halves, still ending
+/// at t + step. On failure the state is left as it was before the step (except for the
+/// constraint_violation of an unsplit step, which keeps the step; a piece's undoes the whole
+/// step) and d.message says where.
 template <class Scalar>
 StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
   const bool can_split = d.settings.max_step_halvings > 0;

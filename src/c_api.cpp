@@ -410,7 +410,10 @@ int fs_builder_set_integrator(fs_model_builder* b, double step, double spectral_
     s.step = step;
     s.spectral_radius = spectral_radius;
     s.max_iterations = max_iterations;
-    if (tolerance > 0) s.acceleration_tolerance = tolerance;
+    if (tolerance > 0) {  // an absolute tolerance in place of the default relative one
+      s.acceleration_tolerance = tolerance;
+      s.relative_acceleration_tolerance = 0;
+    }
     return int(FS_OK);  // finalize checks the values
   });
 }
@@ -567,6 +570,42 @@ int fs_set_step_size(fs_data* d, double step) {
     return fail(FS_ERROR_INVALID_ARGUMENT, "fs_set_step_size: the step must be positive");
   fsx::set_step_size(d->data, step);
   return FS_OK;
+}
+
+int fs_settings_get(const fs_data* d, fs_settings* out) {
+  if (!d || !out) return null_argument("fs_settings_get");
+  const auto& s = d->data.settings;
+  out->step = s.step;
+  out->spectral_radius = s.spectral_radius;
+  out->max_iterations = s.max_iterations;
+  out->accept_at_iteration_limit = s.accept_at_iteration_limit ? 1 : 0;
+  out->acceleration_tolerance = s.acceleration_tolerance;
+  out->relative_acceleration_tolerance = s.relative_acceleration_tolerance;
+  out->local_error_tolerance = s.local_error_tolerance;
+  out->max_step_halvings = s.max_step_halvings;
+  out->velocity_drift_limit = s.velocity_drift_limit;
+  out->project_velocities = s.project_velocities ? 1 : 0;
+  return FS_OK;
+}
+
+int fs_settings_set(fs_data* d, const fs_settings* in) {
+  return guarded("fs_settings_set", [&] {
+    if (!d || !in) return null_argument("fs_settings_set");
+    auto s = d->data.settings;
+    s.step = in->step;
+    s.spectral_radius = in->spectral_radius;
+    s.max_iterations = in->max_iterations;
+    s.accept_at_iteration_limit = in->accept_at_iteration_limit != 0;
+    s.acceleration_tolerance = in->acceleration_tolerance;
+    s.relative_acceleration_tolerance = in->relative_acceleration_tolerance;
+    s.local_error_tolerance = in->local_error_tolerance;
+    s.max_step_halvings = in->max_step_halvings;
+    s.velocity_drift_limit = in->velocity_drift_limit;
+    s.project_velocities = in->project_velocities != 0;
+    const fsx::Status st = fsx::set_settings(*d->model, d->data, s);
+    if (!st.ok()) return fail(FS_ERROR_INVALID_ARGUMENT, "fs_settings_set: " + st.error().what());
+    return int(FS_OK);
+  });
 }
 
 double fs_time(const fs_data* d) {
@@ -731,6 +770,12 @@ int fs_statistics_get(const fs_data* d, fs_statistics* out) {
   out->iterations = s.iterations;
   out->factorizations = s.factorizations;
   out->over_budget = s.over_budget;
+  out->drift_projections = s.drift_projections;
+  out->split_steps = s.split_steps;
+  out->substeps = s.substeps;
+  out->largest_error_estimate = s.largest_error_estimate;
+  out->last_iterations = s.last_iterations;
+  out->last_correction = s.last_correction;
   return FS_OK;
 }
 

@@ -328,6 +328,7 @@ RunResult run_crane(const Knobs& k) {
     set.max_iterations = k.max_iterations;
     set.accept_at_iteration_limit = k.accept_at_iteration_limit;
     set.acceleration_tolerance = Scalar(k.acceleration_tolerance);
+    set.relative_acceleration_tolerance = Scalar(0);  // the study's tolerances are absolute
     Status st = set_settings(model, d, set);
     if (st) st = initialize(model, d);
     if (!st) {

@@ -224,6 +224,7 @@ int main(int argc, char** argv) {
     State s = cr.initial;
     s.settings.step = step_size;
     s.settings.acceleration_tolerance = 1e-6;
+    s.settings.relative_acceleration_tolerance = 0;
     if (Status st = initialize(model, s); !st) {
       std::fprintf(stderr, "whole_boom_reference: %s\n", st.error().what().c_str());
       return 1;

@@ -144,6 +144,7 @@ int main(int argc, char** argv) {
       changed.push_back(a);
     } else if (a == "--tolerance" && has_value) {
       settings.acceleration_tolerance = std::atof(argv[++i]);
+      settings.relative_acceleration_tolerance = 0;  // in place of the default
       changed.push_back(a + " " + argv[i]);
     } else if (a == "--error-tolerance" && has_value) {
       settings.local_error_tolerance = std::atof(argv[++i]);

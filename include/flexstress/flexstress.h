@@ -177,8 +177,9 @@ int fs_builder_add_damage_meter(fs_model_builder* b, const char* name, int outpu
 int fs_builder_add_input(fs_model_builder* b, const char* name);
 int fs_builder_set_gravity(fs_model_builder* b, const double gravity[3]);
 /* Integrator settings every data starts with: step (s), spectral radius at infinity in [0, 1]
- * (1: no numerical damping), Newton iterations per step, and the Newton tolerance (an
- * acceleration, m/s^2; <= 0 keeps the default 1e-5). */
+ * (1: no numerical damping), Newton iterations per step, and an absolute Newton tolerance
+ * (an acceleration, m/s^2) in place of the default: the larger of 1e-5 and 1e-6 of the larger
+ * of |gravity| and the largest acceleration at fs_initialize; <= 0 keeps the default. */
 int fs_builder_set_integrator(fs_model_builder* b, double step, double spectral_radius,
                               int max_iterations, double tolerance);
 
@@ -216,6 +217,25 @@ int fs_solve_static_equilibrium(fs_data* d);
 /* One step; returns an fs_step_status. Allocates nothing. */
 int fs_step(fs_data* d);
 int fs_set_step_size(fs_data* d, double step);
+
+/* A data's integrator settings (flexstress::ImplicitSettings, whose comments say what each
+ * does): read them with fs_settings_get, change fields, write them back with fs_settings_set,
+ * which checks them (FS_ERROR_INVALID_ARGUMENT with a message naming the field) and keeps the
+ * state; the next step uses them. */
+typedef struct fs_settings {
+  double step;                   /* s */
+  double spectral_radius;        /* at infinity, in [0, 1]; 1: no numerical damping */
+  int max_iterations;            /* Newton iterations per step (or piece) */
+  int accept_at_iteration_limit; /* 1: a step at the limit is kept (a real-time budget) */
+  double acceleration_tolerance; /* absolute part of the Newton tolerance, m/s^2 */
+  double relative_acceleration_tolerance; /* times the acceleration scale */
+  double local_error_tolerance;  /* m, rad; 0: no local error control */
+  int max_step_halvings;         /* a failing step is retried in down to 2^-n pieces */
+  double velocity_drift_limit;   /* projects drifting velocities; 0: never */
+  int project_velocities;        /* 1: after every step */
+} fs_settings;
+int fs_settings_get(const fs_data* d, fs_settings* out);
+int fs_settings_set(fs_data* d, const fs_settings* settings);
 double fs_time(const fs_data* d); /* s; NaN for a null data */
 
 /* Runtime changes: an input's value for the next steps, a joint switched on or off (the next
@@ -258,7 +278,14 @@ int fs_energy_compute(fs_data* d, fs_energy* out);
 double fs_constraint_violation(const fs_data* d); /* largest |Phi|; NaN for a null data */
 
 typedef struct fs_statistics {
-  long long steps, iterations, factorizations, over_budget;
+  long long steps, iterations, factorizations;
+  long long over_budget;       /* steps kept at the iteration limit */
+  long long drift_projections; /* steps whose drifting velocities were projected */
+  long long split_steps;       /* steps retried in pieces, and the pieces they took */
+  long long substeps;
+  double largest_error_estimate; /* the largest local error estimate of a step (m, rad) */
+  int last_iterations;
+  double last_correction; /* the last step's final correction over its tolerance (<= 1: met) */
 } fs_statistics;
 int fs_statistics_get(const fs_data* d, fs_statistics* out);
 

@@ -146,6 +146,11 @@ static void check_swing(const char* modal_file, const reference* r) {
   CHECK(isfinite(force[0]) && isfinite(force[1]) && fabs(moment[0]) < 1e-6 * r->mass);
   CHECK(fs_statistics_get(d, &st) == FS_OK);
   CHECK(st.steps == 500 && st.iterations >= 500 && st.factorizations >= 1);
+  /* A smooth swing at 1 ms: no step split, every step converged, the local error estimate
+   * under its default tolerance (1e-4 m). */
+  CHECK(st.split_steps == 0 && st.substeps == 0 && st.over_budget == 0);
+  CHECK(st.largest_error_estimate > 0.0 && st.largest_error_estimate < 1e-4);
+  CHECK(st.last_iterations >= 1 && st.last_correction <= 1.0);
   printf("statistics: %lld steps, %.2f iterations/step, %lld factorizations\n", st.steps,
          (double)st.iterations / (double)st.steps, st.factorizations);
   fs_data_destroy(d);
@@ -331,6 +336,7 @@ static void check_errors(const char* modal_file, const reference* r) {
   const double backwards[6] = {0.0, 0.0, 1.0, 0.05, 0.5, 0.1}; /* t: 0, 1, 0.5 */
   fs_motion_law law = fs_law_polynomial(0.0, 0.0, 0.0);
   int beam, pivot, status;
+  fs_settings settings;
   /* A marker on a node the body lacks: finalize fails, naming the marker. */
   beam = fs_builder_add_flexible_body(b, "beam", modal_file, 16);
   pivot = fs_builder_add_marker(b, "pivot", FS_GROUND, -1, NULL, NULL);
@@ -420,6 +426,24 @@ static void check_errors(const char* modal_file, const reference* r) {
   CHECK(fs_set_law(d, 0, &law) == FS_ERROR_INVALID_HANDLE);
   CHECK(fs_model_body_modes(m, 3) == -1 && fs_model_body_modes(m, beam) == 0);
   CHECK(fs_set_step_size(d, -1.0) == FS_ERROR_INVALID_ARGUMENT);
+  /* Settings: read, checked on write (the message names the field), written back. */
+  CHECK(fs_settings_get(d, &settings) == FS_OK);
+  CHECK(settings.step == 1e-3 && settings.max_step_halvings == 4);
+  CHECK(settings.local_error_tolerance > 0.0 && settings.relative_acceleration_tolerance > 0.0);
+  settings.relative_acceleration_tolerance = -1.0;
+  CHECK(fs_settings_set(d, &settings) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_last_error(), "relative_acceleration_tolerance") != NULL);
+  settings.relative_acceleration_tolerance = 1e-8;
+  settings.max_step_halvings = 21;
+  CHECK(fs_settings_set(d, &settings) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_last_error(), "max_step_halvings") != NULL);
+  settings.max_step_halvings = 0;
+  settings.step = 5e-4;
+  CHECK(fs_settings_set(d, &settings) == FS_OK);
+  CHECK(fs_settings_get(d, &settings) == FS_OK);
+  CHECK(settings.max_step_halvings == 0 && settings.relative_acceleration_tolerance == 1e-8);
+  CHECK(settings.step == 5e-4);
+  CHECK(fs_settings_set(d, NULL) == FS_ERROR_NULL);
   fs_data_destroy(d);
   fs_model_destroy(m);
 }

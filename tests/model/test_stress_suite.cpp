@@ -96,6 +96,7 @@ Outcome check_case(const SuiteCase& c) {
   if (c.reference.empty()) {
     tight.step = defaults.step / 8;
     tight.acceleration_tolerance = tight.acceleration_tolerance / 100;
+    tight.relative_acceleration_tolerance = tight.relative_acceleration_tolerance / 100;
     ref = run(c, tight);
     REQUIRE_MESSAGE(ref.finished, "the reference failed: " << ref.failure);
   } else {

@@ -72,6 +72,9 @@ struct Data {
   struct Integrator {
     Scalar alpha_m = 0, alpha_f = 0, gamma = 0, beta = 0;
     Scalar beta_prime = 0, gamma_prime = 0, penalty = 0, tol_x = 0;
+    /// The model's acceleration scale for the Newton tolerance: the larger of |g| and the
+    /// largest acceleration at initialize() (ImplicitSettings::relative_acceleration_tolerance).
+    Scalar acceleration_scale = 0;
     bool have_factorization = false, has_previous = false;
     int converged_multipliers = 0;
     std::uint64_t revision = 0;  ///< the Data revision the history was built for

@@ -233,11 +233,7 @@ void set_step_size(Data<Scalar>& d, Scalar h) {
 /// uses them (a changed step size or spectral radius refactorizes, the state is kept).
 template <class Scalar>
 Status set_settings(const Model<Scalar>&, Data<Scalar>& d, const ImplicitSettings<Scalar>& s) {
-  if (!(s.step > Scalar(0)) || !(s.spectral_radius >= Scalar(0)) ||
-      !(s.spectral_radius <= Scalar(1)) || s.max_iterations < 1)
-    return make_error(ErrorCode::invalid_argument,
-                      "settings: the step must be positive, the spectral radius in [0, 1] and "
-                      "max_iterations at least 1");
+  if (Status checked = check_settings(s); !checked) return checked;
   d.settings = s;
   detail::set_step_parameters(d);
   return Status::success();
@@ -322,6 +318,10 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
   detail::solve_accelerations(model, d, d.settings.penalty_factor, Scalar(0), Scalar(1),
                               max_iterations, tol);
   d.a = d.v_dot;
+  // The scale of the Newton tolerance, fixed here: a violent phase later must not loosen it
+  // (its energy error would grow with it).
+  in.acceleration_scale =
+      std::max(model.gravity().norm(), max_abs(d.v_dot.cwiseProduct(in.correction_scale)));
   in.lambda_last = d.lambda;
   in.has_previous = false;
   in.converged_multipliers = 1;
@@ -365,7 +365,9 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   in.a_n = d.a;
   const Scalar t_n = d.t;
   // The floor is the coordinates' round-off, which grows with their size (a chain 40 m long).
-  in.tol_x = std::max(s.acceleration_tolerance / in.beta_prime,
+  in.tol_x = std::max(std::max(s.acceleration_tolerance,
+                               s.relative_acceleration_tolerance * in.acceleration_scale) /
+                          in.beta_prime,
                       s.position_floor * std::max(Scalar(1), max_abs(in.q_n)));
   in.lambda_star = in.lambda_last;
   // Predictor: v_dot and lambda extrapolated linearly from the last two steps.

@@ -312,11 +312,7 @@ class ModelBuilder {
     if (bodies_.empty()) return make_error(ErrorCode::invalid_argument, "a model needs a body");
     ModelType m;
     const auto steps = settings_;
-    if (!(steps.step > Scalar(0)) || !(steps.spectral_radius >= Scalar(0)) ||
-        !(steps.spectral_radius <= Scalar(1)) || steps.max_iterations < 1)
-      return make_error(ErrorCode::invalid_argument,
-                        "settings: the step must be positive, the spectral radius in [0, 1] and "
-                        "max_iterations at least 1");
+    if (Status checked = check_settings(steps); !checked) return checked.error();
     m.settings_ = steps;
     m.gravity_ = gravity_;
     m.has_gravity_ = has_gravity_;

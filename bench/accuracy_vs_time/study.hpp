@@ -178,7 +178,7 @@ double data_bytes(const Data<Scalar>& d) {
                         &d.integrator.q_save,
                         &d.integrator.e,
                         &d.integrator.lambda_star,
-                        &d.integrator.lambda_prev,
+                        &d.integrator.lambda_increment,
                         &d.integrator.lambda_save})
     n += static_cast<std::size_t>(x->size()) * sizeof(Scalar);
   n += static_cast<std::size_t>(d.integrator.iteration.size()) * sizeof(Scalar);

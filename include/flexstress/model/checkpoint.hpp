@@ -228,7 +228,7 @@ Result<std::vector<unsigned char>> save_checkpoint(const Model<Scalar>& m, const
   put_raw(w, d.settings);
   put_raw(w, d.statistics);
   const auto& in = d.integrator;
-  for (bool flag : {in.initialized, in.has_previous, in.have_factorization})
+  for (bool flag : {in.initialized, in.has_previous, in.have_factorization, in.predict_linear})
     w.put(static_cast<std::uint8_t>(flag));
   w.put(static_cast<std::int32_t>(in.converged_multipliers));
   w.put(in.revision);
@@ -236,7 +236,7 @@ Result<std::vector<unsigned char>> save_checkpoint(const Model<Scalar>& m, const
   w.put(in.acceleration_scale);
   put_vector(w, in.vd_prev);
   put_vector(w, in.lambda_last);
-  put_vector(w, in.lambda_prev);
+  put_vector(w, in.lambda_increment);
   if (in.have_factorization) {
     put_vector(w, flat(in.iteration));
     for (const auto& a : in.factorized_rotations) put_vector(w, flat(a));
@@ -344,17 +344,18 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
   }
   ok = ok && get_raw(r, next.settings) && get_raw(r, next.statistics);
   auto& in = next.integrator;
-  std::uint8_t flags[3] = {};
+  std::uint8_t flags[4] = {};
   for (auto& f : flags) ok = ok && r.get(f);
   std::int32_t converged = 0;
   ok = ok && r.get(converged) && r.get(in.revision) && r.get(in.penalty) &&
        r.get(in.acceleration_scale) && get_vector(r, in.vd_prev) && get_vector(r, in.lambda_last) &&
-       get_vector(r, in.lambda_prev);
+       get_vector(r, in.lambda_increment);
   if (ok) {
     set_step_size(next, next.settings.step);  // the step's constants (clears the factorization)
     in.initialized = flags[0] != 0;
     in.has_previous = flags[1] != 0;
     in.have_factorization = flags[2] != 0;
+    in.predict_linear = flags[3] != 0;
     in.converged_multipliers = converged < 0 ? 0 : converged > 2 ? 2 : converged;
   }
   if (ok && in.have_factorization) {

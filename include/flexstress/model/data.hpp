@@ -76,6 +76,7 @@ struct Data {
     /// largest acceleration at initialize() (ImplicitSettings::relative_acceleration_tolerance).
     Scalar acceleration_scale = 0;
     bool have_factorization = false, has_previous = false;
+    bool predict_linear = true;  ///< the linear predictor missed less than a constant one
     int converged_multipliers = 0;
     std::uint64_t revision = 0;  ///< the Data revision the history was built for
     bool initialized = false;
@@ -85,12 +86,13 @@ struct Data {
     VectorX correction_scale;
     VectorX r, dx, v_n, vd_n, a_n, a1, tmp, vd_prev, v_save, vd_save, q_n, q_save;
     /// lambda_last: the augmented Lagrangian's lambda* at the end of the last step (the next
-    /// step starts from it; d.lambda is the multipliers, lambda* + alpha Phi).
-    VectorX e, lambda_star, lambda_last, lambda_prev, lambda_save;
+    /// step starts from it; d.lambda is the multipliers, lambda* + alpha Phi); lambda_increment:
+    /// the change the predictor adds to it (ImplicitSettings::multiplier_trend_memory).
+    VectorX e, lambda_star, lambda_last, lambda_increment, lambda_save;
     /// The state at the start of a step retried in pieces (max_step_halvings), restored when
     /// a piece fails: coordinates, velocities, accelerations, multipliers and their history.
     VectorX q_split, v_split, vd_split, a_split, vd_prev_split, lambda_split, lambda_last_split,
-        lambda_prev_split;
+        lambda_increment_split;
     std::vector<HydraulicState<Scalar>> force_states_split;
   } integrator;
 
@@ -165,8 +167,9 @@ struct Data {
     in.q_split.setZero(model.num_coordinates());
     in.force_states_split = force_states;  // its storage, for split steps
     for (VectorX* x : {&in.v_split, &in.vd_split, &in.a_split, &in.vd_prev_split}) x->setZero(nv);
-    for (VectorX* x : {&in.e, &in.lambda_star, &in.lambda_last, &in.lambda_prev, &in.lambda_save,
-                       &in.lambda_split, &in.lambda_last_split, &in.lambda_prev_split})
+    for (VectorX* x :
+         {&in.e, &in.lambda_star, &in.lambda_last, &in.lambda_increment, &in.lambda_save,
+          &in.lambda_split, &in.lambda_last_split, &in.lambda_increment_split})
       x->setZero(nc);
     for (int k = 0; k < 4; ++k) {
       rk4.v[static_cast<std::size_t>(k)].setZero(nv);

@@ -139,7 +139,7 @@ StepStatus explicit_step(const Model<Scalar>& model, Data<Scalar>& d,
   const Scalar h = s.step, t0 = d.t;
   in.q_n = d.q;
   in.v_n = d.v;
-  in.lambda_prev = d.lambda;
+  in.lambda_save = d.lambda;
   // Stage k starts from q0 moved along the previous stage's velocity (exact on the group).
   const Scalar offsets[4] = {Scalar(0), h / 2, h / 2, h};
   for (int k = 0; k < 4; ++k) {
@@ -162,7 +162,7 @@ StepStatus explicit_step(const Model<Scalar>& model, Data<Scalar>& d,
     d.q = in.q_n;
     d.v = in.v_n;
     d.t = t0;
-    d.lambda = in.lambda_prev;
+    d.lambda = in.lambda_save;
     return StepStatus::non_finite_state;
   }
   detail::explicit_accelerations(model, d, s);

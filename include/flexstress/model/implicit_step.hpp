@@ -371,9 +371,10 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
                       s.position_floor * std::max(Scalar(1), max_abs(in.q_n)));
   in.lambda_star = in.lambda_last;
   // Predictor: v_dot and lambda extrapolated linearly from the last two steps.
-  if (in.has_previous && s.extrapolate_predictor) d.v_dot = Scalar(2) * in.vd_n - in.vd_prev;
+  if (in.has_previous && s.extrapolate_predictor && in.predict_linear)
+    d.v_dot = Scalar(2) * in.vd_n - in.vd_prev;
   if (in.converged_multipliers >= 2 && s.extrapolate_multipliers)
-    in.lambda_star = Scalar(2) * in.lambda_last - in.lambda_prev;
+    in.lambda_star = in.lambda_last + in.lambda_increment;
   in.a1 = ((Scalar(1) - in.alpha_f) * d.v_dot + in.alpha_f * in.vd_n - in.alpha_m * in.a_n) /
           (Scalar(1) - in.alpha_m);
   d.v = in.v_n + h * ((Scalar(1) - in.gamma) * in.a_n + in.gamma * in.a1);
@@ -513,9 +514,24 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   jacobian_times(model, d, in.dx, in.e);
   in.e += d.phi;
   d.lambda = in.lambda_star + in.penalty * in.e;
-  in.lambda_prev = in.lambda_last;
+  // The predictor's next increment: this step's change less a part of the increment it was
+  // predicted with (multiplier_trend_memory; all of it is kept for 1, linear extrapolation).
+  if (in.converged_multipliers >= 2 && s.extrapolate_multipliers)
+    in.lambda_increment = (in.lambda_star - in.lambda_last) -
+                          (Scalar(1) - s.multiplier_trend_memory) * in.lambda_increment;
+  else
+    in.lambda_increment = in.lambda_star - in.lambda_last;
   in.lambda_last = in.lambda_star;
   in.converged_multipliers = kept_at_limit ? 0 : std::min(in.converged_multipliers + 1, 2);
+  if (in.has_previous) {
+    const Scalar linear_miss = (d.v_dot - Scalar(2) * in.vd_n + in.vd_prev)
+                                   .cwiseProduct(in.correction_scale)
+                                   .cwiseAbs()
+                                   .maxCoeff();
+    const Scalar constant_miss =
+        (d.v_dot - in.vd_n).cwiseProduct(in.correction_scale).cwiseAbs().maxCoeff();
+    in.predict_linear = linear_miss <= constant_miss;
+  }
   in.vd_prev = in.vd_n;
   in.has_previous = true;
   ++d.statistics.steps;

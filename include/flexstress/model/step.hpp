@@ -36,7 +36,7 @@ void for_each_split_part(Data<Scalar>& d, F f) {
   f(in.vd_prev, in.vd_prev_split);
   f(d.lambda, in.lambda_split);
   f(in.lambda_last, in.lambda_last_split);
-  f(in.lambda_prev, in.lambda_prev_split);
+  f(in.lambda_increment, in.lambda_increment_split);
   f(d.force_states, in.force_states_split);
 }
 

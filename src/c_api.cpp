@@ -774,6 +774,7 @@ int fs_statistics_get(const fs_data* d, fs_statistics* out) {
   out->split_steps = s.split_steps;
   out->substeps = s.substeps;
   out->largest_error_estimate = s.largest_error_estimate;
+  out->above_error_tolerance = s.above_error_tolerance;
   out->last_iterations = s.last_iterations;
   out->last_correction = s.last_correction;
   return FS_OK;

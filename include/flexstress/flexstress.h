@@ -284,6 +284,7 @@ typedef struct fs_statistics {
   long long split_steps;       /* steps retried in pieces, and the pieces they took */
   long long substeps;
   double largest_error_estimate; /* the largest local error estimate of a step (m, rad) */
+  long long above_error_tolerance; /* smallest pieces kept above the local error tolerance */
   int last_iterations;
   double last_correction; /* the last step's final correction over its tolerance (<= 1: met) */
 } fs_statistics;

@@ -150,6 +150,7 @@ static void check_swing(const char* modal_file, const reference* r) {
    * under its default tolerance (1e-4 m). */
   CHECK(st.split_steps == 0 && st.substeps == 0 && st.over_budget == 0);
   CHECK(st.largest_error_estimate > 0.0 && st.largest_error_estimate < 1e-4);
+  CHECK(st.above_error_tolerance == 0);
   CHECK(st.last_iterations >= 1 && st.last_correction <= 1.0);
   printf("statistics: %lld steps, %.2f iterations/step, %lld factorizations\n", st.steps,
          (double)st.iterations / (double)st.steps, st.factorizations);

@@ -120,11 +120,16 @@ Outcome check_case(const SuiteCase& c) {
   MESSAGE(c.name << ": " << (def.finished ? "finished" : "FAILED: " + def.failure)
                  << ", iterations/step " << iterations << ", factorizations/step " << factorizations
                  << ", steps split " << s.split_steps << " (into " << s.substeps << " pieces)"
-                 << ", largest error estimate " << s.largest_error_estimate
+                 << ", largest error estimate " << s.largest_error_estimate << " ("
+                 << s.above_error_tolerance << " pieces kept above the tolerance)"
                  << ", largest difference to the reference " << error << " of " << scale << " ("
                  << 100 * error / scale << " %), both runs " << seconds << " s");
   CHECK(def.finished);
   CHECK(error <= 0.01 * scale);
+  // The statistics tell a step kept above the error tolerance: only the smallest pieces are.
+  CHECK((s.above_error_tolerance > 0) ==
+        (s.largest_error_estimate > defaults.local_error_tolerance));
+  if (s.above_error_tolerance > 0) CHECK(s.split_steps > 0);
   Outcome o;
   if (!ref.y.empty()) o.reference_end = ref.y.back();
   if (!def.y.empty()) o.default_end = def.y.back();

@@ -181,6 +181,9 @@ struct StepStatistics {
   long split_steps = 0;        ///< steps retried in pieces (max_step_halvings)
   long substeps = 0;           ///< the pieces those steps took
   double largest_error_estimate = 0;  ///< the largest local error estimate of a step (m, rad)
+  /// Pieces kept although their estimate exceeded local_error_tolerance: the smallest ones
+  /// (step / 2^max_step_halvings), which are not split further.
+  long above_error_tolerance = 0;
   /// The last step's final Newton correction over its tolerance: at most 1 when it converged,
   /// how far from converged a step kept at the budget is.
   double last_correction = 0;

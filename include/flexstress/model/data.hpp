@@ -102,7 +102,8 @@ struct Data {
   } rk4;
 
   /// The reason of the last failure (initialization, a step's restart), for a caller that
-  /// only sees a status; fixed storage, written without allocating.
+  /// only sees a status; fixed storage, written without allocating. A step that passed in
+  /// pieces leaves it empty.
   std::array<char, 512> message{};
 
   Data() = default;

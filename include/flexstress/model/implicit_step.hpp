@@ -505,6 +505,8 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     }
     d.statistics.largest_error_estimate =
         std::max(d.statistics.largest_error_estimate, static_cast<double>(estimate));
+    if (s.local_error_tolerance > Scalar(0) && estimate > s.local_error_tolerance)
+      ++d.statistics.above_error_tolerance;
   }
   if (stale_for_next) in.have_factorization = false;
   // The multipliers of the converged equations are lambda* + alpha Phi at the final positions,

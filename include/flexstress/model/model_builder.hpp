@@ -118,7 +118,7 @@ class ModelBuilder {
       m.local = p.holder ? p.ops.add_marker(p.holder.get(), node, offset, axes) : -1;
       if (m.local < 0 && p.holder)
         fail(ErrorCode::invalid_mesh, "marker '", name, "': body '", p.body.name, "' has no node ",
-             node);
+             node, " (-1 is the body frame, the only node of a rigid body)");
     }
     markers_.push_back(std::move(m));
     return MarkerId{static_cast<int>(markers_.size()) - 1};

@@ -115,6 +115,7 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
   // The next step extrapolates from a whole step's history, which a split step does not leave.
   in.has_previous = false;
   in.converged_multipliers = std::min(in.converged_multipliers, 1);
+  d.message.fill('\0');  // the step passed: why its whole failed is no failure to report
   return result;
 }
 

@@ -67,24 +67,24 @@ typedef enum fs_step_status {
   FS_STEP_ABOVE_STABILITY_LIMIT = 4,
   FS_STEP_INVALID_INPUT = 5,
   FS_STEP_CAPACITY_EXCEEDED = 6,
-  FS_STEP_TOO_LARGE = 7, /* the corrector diverged: the step is too large for the motion */
+  FS_STEP_TOO_LARGE = 7,      /* the corrector diverged: the step is too large for the motion */
   FS_STEP_BUDGET_REACHED = 8, /* kept at the Newton budget (accept_at_iteration_limit) */
-  FS_STEP_ERROR = -1 /* null or foreign data, or an internal error */
+  FS_STEP_ERROR = -1          /* null or foreign data, or an internal error */
 } fs_step_status;
 
 typedef enum fs_joint_kind {
-  FS_JOINT_SPHERICAL = 0,   /* 3 equations: origins coincide */
-  FS_JOINT_REVOLUTE = 1,    /* 5: turns about the common z axis */
-  FS_JOINT_UNIVERSAL = 2,   /* 4 */
-  FS_JOINT_CYLINDRICAL = 3, /* 4: turns about and slides along z */
-  FS_JOINT_PRISMATIC = 4,   /* 5: slides along z */
-  FS_JOINT_FIXED = 5,       /* 6 */
-  FS_JOINT_DISTANCE = 6,    /* 1: fs_builder_add_distance */
+  FS_JOINT_SPHERICAL = 0,        /* 3 equations: origins coincide */
+  FS_JOINT_REVOLUTE = 1,         /* 5: turns about the common z axis */
+  FS_JOINT_UNIVERSAL = 2,        /* 4 */
+  FS_JOINT_CYLINDRICAL = 3,      /* 4: turns about and slides along z */
+  FS_JOINT_PRISMATIC = 4,        /* 5: slides along z */
+  FS_JOINT_FIXED = 5,            /* 6 */
+  FS_JOINT_DISTANCE = 6,         /* 1: fs_builder_add_distance */
   FS_JOINT_PRISMATIC_DRIVER = 7, /* 1: (r_j - r_i) . z_i = s(t); fs_builder_add_driver */
   FS_JOINT_REVOLUTE_DRIVER = 8   /* 1: angle x_i -> x_j about z_i = s(t); fs_builder_add_driver */
 } fs_joint_kind;
 
-#define FS_GROUND (-1)        /* the ground body (fixed); its markers take node -1 */
+#define FS_GROUND (-1)         /* the ground body (fixed); its markers take node -1 */
 #define FS_INVALID_HANDLE (-2) /* what a handle-returning function returns on failure */
 
 /* A prescribed motion s(t): value, rate and acceleration written to out[0..2]. Called inside
@@ -153,9 +153,9 @@ int fs_builder_add_distance(fs_model_builder* b, const char* name, int marker_i,
 int fs_builder_add_driver(fs_model_builder* b, const char* name, int kind, int marker_i,
                           int marker_j, const fs_motion_law* law);
 /* Tension f = stiffness (L - rest_length) + damping L_dot + preload between marker origins. */
-int fs_builder_add_spring_damper(fs_model_builder* b, const char* name, int marker_i,
-                                 int marker_j, double stiffness, double damping,
-                                 double rest_length, double preload);
+int fs_builder_add_spring_damper(fs_model_builder* b, const char* name, int marker_i, int marker_j,
+                                 double stiffness, double damping, double rest_length,
+                                 double preload);
 /* A force and moment at a marker on a body, computed each evaluation by the callback from the
  * time and the marker's global position and velocity; it writes force[3] and moment[3]
  * (global, zeroed before the call). Called from the thread stepping the data, inside the
@@ -223,16 +223,16 @@ int fs_set_step_size(fs_data* d, double step);
  * which checks them (FS_ERROR_INVALID_ARGUMENT with a message naming the field) and keeps the
  * state; the next step uses them. */
 typedef struct fs_settings {
-  double step;                   /* s */
-  double spectral_radius;        /* at infinity, in [0, 1]; 1: no numerical damping */
-  int max_iterations;            /* Newton iterations per step (or piece) */
-  int accept_at_iteration_limit; /* 1: a step at the limit is kept (a real-time budget) */
-  double acceleration_tolerance; /* absolute part of the Newton tolerance, m/s^2 */
+  double step;                            /* s */
+  double spectral_radius;                 /* at infinity, in [0, 1]; 1: no numerical damping */
+  int max_iterations;                     /* Newton iterations per step (or piece) */
+  int accept_at_iteration_limit;          /* 1: a step at the limit is kept (a real-time budget) */
+  double acceleration_tolerance;          /* absolute part of the Newton tolerance, m/s^2 */
   double relative_acceleration_tolerance; /* times the acceleration scale */
-  double local_error_tolerance;  /* m, rad; 0: no local error control */
-  int max_step_halvings;         /* a failing step is retried in down to 2^-n pieces */
-  double velocity_drift_limit;   /* projects drifting velocities; 0: never */
-  int project_velocities;        /* 1: after every step */
+  double local_error_tolerance;           /* m, rad; 0: no local error control */
+  int max_step_halvings;                  /* a failing step is retried in down to 2^-n pieces */
+  double velocity_drift_limit;            /* projects drifting velocities; 0: never */
+  int project_velocities;                 /* 1: after every step */
 } fs_settings;
 int fs_settings_get(const fs_data* d, fs_settings* out);
 int fs_settings_set(fs_data* d, const fs_settings* settings);
@@ -283,7 +283,7 @@ typedef struct fs_statistics {
   long long drift_projections; /* steps whose drifting velocities were projected */
   long long split_steps;       /* steps retried in pieces, and the pieces they took */
   long long substeps;
-  double largest_error_estimate; /* the largest local error estimate of a step (m, rad) */
+  double largest_error_estimate;   /* the largest local error estimate of a step (m, rad) */
   long long above_error_tolerance; /* smallest pieces kept above the local error tolerance */
   int last_iterations;
   double last_correction; /* the last step's final correction over its tolerance (<= 1: met) */

@@ -5,14 +5,14 @@
 
 /// For the few small helpers of the step's inner loops that the compiler would otherwise call
 /// out of line from a large caller (a joint kind's switch): measured on the crane's step.
-/// FLEXSTRESS_FLATTEN: inline every call in the function's body (the small Eigen operations it
-/// is made of), however large that makes it.
+/// FLEXSTRESS_NOINLINE_FLATTEN: a function kept out of line whose body has every call inlined
+/// (the small Eigen operations it is made of): one compact copy that all its callers share.
 #if defined(__GNUC__) || defined(__clang__)
 #define FLEXSTRESS_ALWAYS_INLINE inline __attribute__((always_inline))
-#define FLEXSTRESS_FLATTEN __attribute__((flatten))
+#define FLEXSTRESS_NOINLINE_FLATTEN __attribute__((noinline, flatten))
 #else
 #define FLEXSTRESS_ALWAYS_INLINE inline
-#define FLEXSTRESS_FLATTEN
+#define FLEXSTRESS_NOINLINE_FLATTEN
 #endif
 
 namespace flexstress {

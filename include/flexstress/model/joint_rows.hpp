@@ -201,13 +201,15 @@ template <class Scalar>
 using Rows = JointRows<Scalar>;
 
 // Each helper writes row r; conv only with rates (a Newton iterate needs Phi and B alone, and
-// its markers carry no velocities).
+// its markers carry no velocities). Out of line, one copy shared by the joint kinds: inlined
+// into every case of the switch below they made it too large for the instruction cache
+// (measured on the crane's step).
 
 /// a_i . b_j = 0 (dot-1).
 template <class Scalar>
-FLEXSTRESS_ALWAYS_INLINE void perpendicular(const MarkerState<Scalar>& mi, int ai,
-                                            const MarkerState<Scalar>& mj, int aj,
-                                            Rows<Scalar>& out, int r, bool rates) {
+FLEXSTRESS_NOINLINE_FLATTEN void perpendicular(const MarkerState<Scalar>& mi, int ai,
+                                               const MarkerState<Scalar>& mj, int aj,
+                                               Rows<Scalar>& out, int r, bool rates) {
   const auto k = static_cast<std::size_t>(r);
   const auto& a = mi.axis(ai);
   const auto& b = mj.axis(aj);
@@ -221,9 +223,9 @@ FLEXSTRESS_ALWAYS_INLINE void perpendicular(const MarkerState<Scalar>& mi, int a
 
 /// a_i . (r_j - r_i) = 0 (dot-2).
 template <class Scalar>
-FLEXSTRESS_ALWAYS_INLINE void in_plane(const MarkerState<Scalar>& mi, int ai,
-                                       const MarkerState<Scalar>& mj, Rows<Scalar>& out, int r,
-                                       bool rates) {
+FLEXSTRESS_NOINLINE_FLATTEN void in_plane(const MarkerState<Scalar>& mi, int ai,
+                                          const MarkerState<Scalar>& mj, Rows<Scalar>& out, int r,
+                                          bool rates) {
   const auto k = static_cast<std::size_t>(r);
   const auto& a = mi.axis(ai);
   const Vec3<Scalar> d = mj.origin.value - mi.origin.value;
@@ -240,9 +242,9 @@ FLEXSTRESS_ALWAYS_INLINE void in_plane(const MarkerState<Scalar>& mi, int ai,
 
 /// r_j - r_i = 0, rows r to r + 2.
 template <class Scalar>
-FLEXSTRESS_ALWAYS_INLINE void coincident(const MarkerState<Scalar>& mi,
-                                         const MarkerState<Scalar>& mj, Rows<Scalar>& out, int r,
-                                         bool rates) {
+FLEXSTRESS_NOINLINE_FLATTEN void coincident(const MarkerState<Scalar>& mi,
+                                            const MarkerState<Scalar>& mj, Rows<Scalar>& out, int r,
+                                            bool rates) {
   for (int c = 0; c < 3; ++c) {
     const auto k = static_cast<std::size_t>(r + c);
     out.phi[k] = mj.origin.value(c) - mi.origin.value(c);
@@ -254,8 +256,9 @@ FLEXSTRESS_ALWAYS_INLINE void coincident(const MarkerState<Scalar>& mi,
 
 /// |r_j - r_i|^2 - L^2 = 0.
 template <class Scalar>
-FLEXSTRESS_ALWAYS_INLINE void distance(const MarkerState<Scalar>& mi, const MarkerState<Scalar>& mj,
-                                       Scalar length, Rows<Scalar>& out, int r, bool rates) {
+FLEXSTRESS_NOINLINE_FLATTEN void distance(const MarkerState<Scalar>& mi,
+                                          const MarkerState<Scalar>& mj, Scalar length,
+                                          Rows<Scalar>& out, int r, bool rates) {
   const auto k = static_cast<std::size_t>(r);
   const Vec3<Scalar> d = mj.origin.value - mi.origin.value;
   out.phi[k] = d.squaredNorm() - length * length;
@@ -281,10 +284,9 @@ Scalar perpendicular_rate(const MarkerState<Scalar>& mi, int ai, const MarkerSta
 /// a distance joint's; `law` a driver's prescribed motion at t. Without rates, conv is left at
 /// zero (the markers were evaluated without velocities).
 template <class Scalar>
-FLEXSTRESS_FLATTEN void evaluate_joint_rows(JointKind kind, const MarkerState<Scalar>& i,
-                                            const MarkerState<Scalar>& j, Scalar length,
-                                            const MotionValue<Scalar>& law, JointRows<Scalar>& out,
-                                            bool rates = true) {
+void evaluate_joint_rows(JointKind kind, const MarkerState<Scalar>& i, const MarkerState<Scalar>& j,
+                         Scalar length, const MotionValue<Scalar>& law, JointRows<Scalar>& out,
+                         bool rates = true) {
   namespace jr = joint_rows;
   out.reset(joint_equations(kind));
   switch (kind) {

@@ -280,6 +280,7 @@ TEST_CASE("a rigid link on a pivot keeps its reused factorization and follows th
   struct Run {
     double iterations, factorizations;
     Vector3d velocity;
+    double fastest_swing;  // largest |omega| over the run (rad/s)
   };
   const auto swing = [](bool reuse) {
     ModelBuilder<double> b;
@@ -296,10 +297,14 @@ TEST_CASE("a rigid link on a pivot keeps its reused factorization and follows th
     REQUIRE(initialize(m, d).ok());
     const int steps = 2000;  // 2 s at the default 1 ms: swings through the bottom and back
     StepStatus status = StepStatus::ok;
-    for (int i = 0; i < steps && status == StepStatus::ok; ++i) status = step(m, d);
+    double fastest = 0;
+    for (int i = 0; i < steps && status == StepStatus::ok; ++i) {
+      status = step(m, d);
+      fastest = std::max(fastest, body_angular_velocity(m, d, link).norm());
+    }
     REQUIRE(status == StepStatus::ok);
     return Run{double(d.statistics.iterations) / steps, double(d.statistics.factorizations) / steps,
-               body_velocity(m, d, link)};
+               body_velocity(m, d, link), fastest};
   };
   const Run reused = swing(true), fresh = swing(false);
   MESSAGE("reused: " << reused.iterations << " iterations, " << reused.factorizations
@@ -308,6 +313,12 @@ TEST_CASE("a rigid link on a pivot keeps its reused factorization and follows th
   CHECK(reused.iterations <= fresh.iterations + 0.05);
   // Both converge to the Newton tolerance: the same motion.
   CHECK((reused.velocity - fresh.velocity).norm() < 1e-6 * (1 + fresh.velocity.norm()));
+  // And the right one: energy conservation, m g L/2 = I_pivot omega^2 / 2 with I_pivot = m L^2/3,
+  // gives omega = sqrt(3 g / L) as the link passes the bottom (at about 0.5 s).
+  const double omega_bottom = std::sqrt(3 * 9.81 / 1.0);
+  MESSAGE("fastest swing " << reused.fastest_swing << " rad/s, energy conservation "
+                           << omega_bottom);
+  CHECK(std::abs(reused.fastest_swing - omega_bottom) < 1e-4 * omega_bottom);
 }
 
 }  // namespace test_mechanisms

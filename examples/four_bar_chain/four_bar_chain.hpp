@@ -112,6 +112,37 @@ inline Status start(const Chain& c, Data<double>& d) {
   return initialize(c.model, d);
 }
 
+/// The exact motion of the chain of make_chain from start(): every crank parallel to the first,
+/// whose angle phi (from the horizontal) is the one degree of freedom,
+/// J phi'' = -m g (N + 1 + 2 N) / 2 cos(phi), J = (N + 1) (1/3 + a^2/12) + N for the N + 1
+/// cranks turning about their ends and the N couplers translating (unit rods of add_rod, a the
+/// section's side). Integrated by RK4 in steps of 1e-5 s: a reference for the implicit step.
+class ExactMotion {
+ public:
+  explicit ExactMotion(int n)
+      : inertia_((n + 1) * (1.0 / 3 + kSide * kSide / 12) + n), load_(9.81 * ((n + 1) / 2.0 + n)) {}
+  double angle() const { return phi_; }
+  /// Advances by `duration`, a whole number of RK4 steps.
+  void advance(double duration) {
+    const long steps = std::lround(duration / kStep);
+    const auto acceleration = [&](double phi) { return -load_ * std::cos(phi) / inertia_; };
+    const double h = kStep;
+    for (long i = 0; i < steps; ++i) {
+      const double k1p = w_, k1w = acceleration(phi_);
+      const double k2p = w_ + h / 2 * k1w, k2w = acceleration(phi_ + h / 2 * k1p);
+      const double k3p = w_ + h / 2 * k2w, k3w = acceleration(phi_ + h / 2 * k2p);
+      const double k4p = w_ + h * k3w, k4w = acceleration(phi_ + h * k3p);
+      phi_ += h / 6 * (k1p + 2 * k2p + 2 * k3p + k4p);
+      w_ += h / 6 * (k1w + 2 * k2w + 2 * k3w + k4w);
+    }
+  }
+
+ private:
+  static constexpr double kSide = 0.01, kStep = 1e-5;
+  double inertia_, load_;
+  double phi_ = std::acos(0.0), w_ = -1.0;  // cranks vertical, the first crank's tip at 1 m/s
+};
+
 /// Planar angle of a body's x axis.
 inline double heading(const Chain& c, const Data<double>& d, BodyId body) {
   const Matrix3d a = rotation_matrix(body_orientation(c.model, d, body));

@@ -76,6 +76,26 @@ struct VectorEval {
   Vec3<Scalar> value, velocity, convective, local;
 };
 
+/// Evaluates body vector v at k into e. Without rates, velocity and convective terms are zero;
+/// a part not wanted is NaN (see MarkerEval::evaluate).
+template <class Scalar, int NModes>
+void evaluate_vector(const BodyVector<Scalar, NModes>& v, const BodyKinematics<Scalar, NModes>& k,
+                     VectorEval<Scalar>& e, bool rates, bool wanted) {
+  if (!wanted) {
+    e.value.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+    e.local = e.velocity = e.convective = e.value;
+    return;
+  }
+  e.local = v.local(k);
+  e.value = v.global_from_local(k, e.local);
+  if (rates) {
+    v.rates_from_local(k, e.local, e.velocity, e.convective);
+  } else {
+    e.velocity.setZero();
+    e.convective.setZero();
+  }
+}
+
 /// A marker evaluated at a body state: what joints and force elements read.
 template <class Scalar, int NModes>
 struct MarkerEval {
@@ -94,10 +114,10 @@ struct MarkerEval {
                 bool rates = true, unsigned parts = MarkerParts::all) {
     marker = &m;
     kin = &k;
-    eval(m.origin, origin, rates, parts & MarkerParts::origin);
-    eval(m.x, x, rates, parts & MarkerParts::x);
-    eval(m.y, y, rates, parts & MarkerParts::y);
-    eval(m.z, z, rates, parts & MarkerParts::z);
+    evaluate_vector(m.origin, k, origin, rates, parts & MarkerParts::origin);
+    evaluate_vector(m.x, k, x, rates, parts & MarkerParts::x);
+    evaluate_vector(m.y, k, y, rates, parts & MarkerParts::y);
+    evaluate_vector(m.z, k, z, rates, parts & MarkerParts::z);
   }
   /// Row b^T J of the marker origin or of an axis (1 x nv).
   RowV row_origin(const Vec3<Scalar>& b) const { return marker->origin.row(*kin, origin.local, b); }
@@ -108,24 +128,6 @@ struct MarkerEval {
   /// Jacobian of the origin (3 x nv).
   typename ModalSizes<Scalar, NModes>::Mat3V jacobian_origin() const {
     return marker->origin.jacobian(*kin);
-  }
-
- private:
-  void eval(const BodyVector<Scalar, NModes>& v, VectorEval<Scalar>& e, bool rates,
-            bool wanted) const {
-    if (!wanted) {
-      e.value.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
-      e.local = e.velocity = e.convective = e.value;
-      return;
-    }
-    e.local = v.local(*kin);
-    e.value = v.global_from_local(*kin, e.local);
-    if (rates) {
-      v.rates_from_local(*kin, e.local, e.velocity, e.convective);
-    } else {
-      e.velocity.setZero();
-      e.convective.setZero();
-    }
   }
 };
 

@@ -51,6 +51,13 @@ struct ImplicitSettings {
   /// the factor must stay well below L / |Phi_predicted| (about 1e6 at h = 1e-2, far more at
   /// h = 1e-3).
   Scalar penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e2) : Scalar(1e3);
+  /// The largest penalty factor a step raises penalty_factor to where the multipliers converge
+  /// slowly: tenfold after two corrections with a fresh matrix that each shrank by less than
+  /// half, lowered tenfold after ten steps without (penalty_factor or less: never raised).
+  /// Near a singular configuration (the 40-bar chain) it halves the iterations per step; away
+  /// from one it does not act. Above about 1e5 the round-off of alpha Phi on coordinates of
+  /// tens of metres exceeds the correction tolerance.
+  Scalar max_penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e4) : Scalar(1e5);
   bool reuse_factorization = true;
   /// Refactorize when a correction shrinks by less than this factor (stale matrix): at once
   /// from the third correction on; when it is the second, at the start of the next step,
@@ -165,6 +172,8 @@ Status check_settings(const ImplicitSettings<Scalar>& s) {
     return bad("velocity_drift_limit must be finite and not negative (0: never)");
   if (!(s.multiplier_trend_memory >= Scalar(0)) || !(s.multiplier_trend_memory <= Scalar(1)))
     return bad("multiplier_trend_memory must be in [0, 1]");
+  if (!non_negative(s.max_penalty_factor))
+    return bad("max_penalty_factor must be finite and not negative (0: never raised)");
   if (s.max_step_halvings < 0 || s.max_step_halvings > 20)
     return bad("max_step_halvings must be in [0, 20]");
   return Status::success();

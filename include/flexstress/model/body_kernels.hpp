@@ -151,28 +151,26 @@ struct BodyKernelImpl {
     const Holder& hb = holder(h);
     Kin k;
     kinematics(hb.body, q, v, a, k);
-    MarkerEval<Scalar, N> e;
     for (int index = first; index < last; ++index) {
-      const auto m = static_cast<std::size_t>(index);
       const unsigned p = parts[index - first];
       if (p == 0) continue;
       const bool with_rates = rates || (p & marker_needs_rates) != 0;
       const MarkerAnchor<Scalar>& anchor = anchors[index - first];
-      if (anchor.active) {
-        Marker<Scalar, N> moved = hb.markers[m];
-        moved.origin.c = anchor.c[0];
-        moved.x.c = anchor.c[1];
-        moved.y.c = anchor.c[2];
-        moved.z.c = anchor.c[3];
-        e.evaluate(moved, k, with_rates, p & MarkerParts::all);
-      } else {
-        e.evaluate(hb.markers[m], k, with_rates, p & MarkerParts::all);
+      const Marker<Scalar, N>& marker = hb.markers[static_cast<std::size_t>(index)];
+      MarkerState<Scalar>& o = out[index - first];
+      VectorEval<Scalar>* evaluated[4] = {&o.origin, &o.x, &o.y, &o.z};
+      const BodyVector<Scalar, N>* vectors[4] = {&marker.origin, &marker.x, &marker.y, &marker.z};
+      for (int v = 0; v < 4; ++v) {
+        const bool wanted = (p & (1u << v)) != 0;
+        if (anchor.active && wanted) {  // anchored where it was caught: c moved
+          BodyVector<Scalar, N> moved = *vectors[v];
+          moved.c = anchor.c[static_cast<std::size_t>(v)];
+          evaluate_vector(moved, k, *evaluated[v], with_rates, true);
+        } else {
+          evaluate_vector(*vectors[v], k, *evaluated[v], with_rates, wanted);
+        }
       }
-      out[index - first].origin = e.origin;
-      out[index - first].x = e.x;
-      out[index - first].y = e.y;
-      out[index - first].z = e.z;
-      out[index - first].rotation = a;
+      o.rotation = a;
     }
   }
 

@@ -16,6 +16,7 @@
 #include "flexstress/core/types.hpp"
 #include "flexstress/dynamics/motion_laws.hpp"
 #include "flexstress/dynamics/step_settings.hpp"
+#include "flexstress/model/joint_rows.hpp"
 #include "flexstress/model/model.hpp"
 
 namespace flexstress {
@@ -64,7 +65,8 @@ struct Data {
   VectorX geometric;  ///< per body with geometric stiffening its K_G (Body::geometric_offset)
   VectorX jacobian;   ///< per joint and body its rows x nv block, row-major (Joint::jac_i, jac_j)
   VectorX phi, phi_t, conv;
-  VectorX row_scratch;  ///< one body's row (force elements)
+  VectorX row_scratch;           ///< one body's row (force elements)
+  JointRows<Scalar> joint_rows;  ///< one joint's rows (update_constraints; not zeroed per call)
 
   // ---- integrator -------------------------------------------------------------------------
   ImplicitSettings<Scalar> settings;
@@ -78,6 +80,11 @@ struct Data {
     bool have_factorization = false, has_previous = false;
     bool predict_linear = true;  ///< the linear predictor missed less than a constant one
     int converged_multipliers = 0;
+    /// The penalty's factor over ImplicitSettings::penalty_factor, raised where the multiplier
+    /// updates contract slowly (near a singular configuration) and lowered again after
+    /// calm_steps steps that converged without it.
+    Scalar penalty_boost = 1;
+    int calm_steps = 0;
     std::uint64_t revision = 0;  ///< the Data revision the history was built for
     bool initialized = false;
     MatrixX iteration;

@@ -81,7 +81,7 @@ void factorize_iteration(const Model<Scalar>& model, Data<Scalar>& d) {
   const Scalar m_ref = max_abs(in.iteration.diagonal());
   in.iteration *= in.beta_prime;
   add_modal_stiffness_damping(model, d, in.iteration, Scalar(1), in.gamma_prime);
-  in.penalty = d.settings.penalty_factor * in.beta_prime * m_ref;
+  in.penalty = d.settings.penalty_factor * in.penalty_boost * in.beta_prime * m_ref;
   add_constraint_gram(model, d, in.penalty, in.iteration);
   in.cholesky.compute(in.iteration);
   record_rotations(model, d);
@@ -325,6 +325,8 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
   in.lambda_last = d.lambda;
   in.has_previous = false;
   in.converged_multipliers = 1;
+  in.penalty_boost = Scalar(1);
+  in.calm_steps = 0;
   in.revision = d.revision;
   in.initialized = true;
   d.message.fill('\0');
@@ -384,7 +386,8 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   int it = 0;
   bool stale_for_next = false;
   bool converged = false, fresh = false, stale_step = false, restored = false, diverged = false;
-  int growth = 0;
+  int growth = 0, slow = 0;
+  bool boosted = false, raised = false;
   Scalar previous = std::numeric_limits<Scalar>::infinity();
   Scalar residual_prev = std::numeric_limits<Scalar>::infinity();
   Scalar scaled_residual_prev = residual_prev;
@@ -392,11 +395,14 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   for (; it < s.max_iterations; ++it) {
     fresh = false;
     evaluate(model, d, /*rates=*/false);
+    // The last correction was computed with this penalty; its multiplier update uses it too.
+    const Scalar penalty = in.penalty;
     if (!in.have_factorization || !s.reuse_factorization) {
       detail::factorize_iteration(model, d);
       fresh = true;
     }
-    if (it > 0 && !restored) in.lambda_star.noalias() += in.penalty * d.phi;
+    if (it > 0 && !restored) in.lambda_star.noalias() += (raised ? penalty : in.penalty) * d.phi;
+    raised = false;
     restored = false;
     // Residual M v_dot - Q + B^T (lambda* + alpha Phi).
     in.e = in.lambda_star + in.penalty * d.phi;
@@ -430,7 +436,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     }
     in.dx = -in.r;
     detail::solve_turned(model, d, in.dx, fresh);
-    const Scalar size = detail::correction_size(d);
+    Scalar size = detail::correction_size(d);
     if (!std::isfinite(size)) {
       diverged = true;
       break;
@@ -445,14 +451,28 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
       fresh = true;
       in.dx = -in.r;
       detail::solve_turned(model, d, in.dx, fresh);
+      size = detail::correction_size(d);
     }
     const Scalar last = previous;
-    previous = detail::correction_size(d);
+    previous = size;
     // Newton with a fresh matrix converges near the solution; corrections that grow twice in a
     // row with one, beyond the step's own motion, diverge: the step is too large for the
     // motion. Stop before the state does. (Near a singular configuration corrections may stall
     // or grow a little while far below the motion; the iteration limit handles those.)
     growth = fresh && it > 0 && previous > last ? growth + 1 : 0;
+    // The augmented Lagrangian's multiplier updates contract by about
+    // 1 / (1 + penalty sigma^2) per iteration in a direction where the constraint Jacobian's
+    // singular value is sigma: near a singular configuration slowly even with a fresh matrix.
+    // Two such iterations in a row raise the penalty tenfold (up to max_penalty_factor).
+    slow = fresh && it > 0 && previous > in.tol_x && previous > Scalar(0.5) * last ? slow + 1 : 0;
+    if (slow >= 2 && s.penalty_factor > Scalar(0) &&
+        in.penalty_boost * s.penalty_factor < s.max_penalty_factor) {
+      in.penalty_boost =
+          std::min(Scalar(10) * in.penalty_boost, s.max_penalty_factor / s.penalty_factor);
+      in.have_factorization = false;
+      boosted = raised = true;
+      slow = 0;
+    }
     if (growth >= 2 &&
         previous > h * max_abs(in.v_n.cwiseProduct(in.correction_scale)) + Scalar(100) * in.tol_x) {
       diverged = true;
@@ -479,7 +499,9 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   d.statistics.last_iterations = it;
   d.statistics.last_correction = static_cast<double>(previous / in.tol_x);
   d.statistics.iterations += it;
-  const bool finite = d.v.allFinite() && d.v_dot.allFinite() && d.q.allFinite();
+  // A sum is finite only if every term is (or it overflowed, itself a blow-up): a vectorized
+  // test where allFinite() compares entry by entry.
+  const bool finite = std::isfinite(d.v.sum() + d.v_dot.sum() + d.q.sum());
   bool kept_at_limit = false;
   if (!converged && finite && s.accept_at_iteration_limit && it >= s.max_iterations) {
     converged = true;
@@ -519,6 +541,12 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
       ++d.statistics.above_error_tolerance;
   }
   if (stale_for_next) in.have_factorization = false;
+  in.calm_steps = boosted ? 0 : in.calm_steps + 1;
+  if (in.penalty_boost > Scalar(1) && in.calm_steps >= 10) {
+    in.penalty_boost = std::max(Scalar(1), in.penalty_boost / Scalar(10));
+    in.calm_steps = 0;
+    in.have_factorization = false;
+  }
   // The multipliers of the converged equations are lambda* + alpha Phi at the final positions,
   // Phi + B dx to first order in the last correction dx (the workspace holds Phi and B of the
   // last iterate). lambda* alone, where the next step starts from, would be off by alpha Phi:

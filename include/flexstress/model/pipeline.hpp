@@ -98,7 +98,7 @@ void update_markers(const Model<Scalar>& model, Data<Scalar>& d, bool rates = tr
 /// without rates, as update_markers, conv is left out). An inactive joint's rows read 0 = 0.
 template <class Scalar>
 void update_constraints(const Model<Scalar>& model, Data<Scalar>& d, bool rates = true) {
-  JointRows<Scalar> rows;
+  JointRows<Scalar>& rows = d.joint_rows;
   const auto& joints = model.joints();
   for (std::size_t k = 0; k < joints.size(); ++k) {
     const auto& j = joints[k];

@@ -54,7 +54,7 @@ TEST_CASE("A02 N four-bar (N = 4): 20 s through 20 singular configurations witho
 // (by about 1 / (1 + penalty sigma^2) per iteration for a Jacobian singular value sigma), even
 // with a fresh matrix; the step then raises the penalty (ImplicitSettings::max_penalty_factor).
 // The N = 40 chain on the defaults, up to 0.70 s, 22 ms before the cranks first lie flat: with
-// the raise its steps converge whole (measured: 4.3 iterations per step, the first crank 2e-6 rad
+// the raise its steps converge whole (measured: 5.0 iterations per step, the first crank 2e-6 rad
 // off the exact motion, two orders below the benchmark's 1e-3); without it Newton
 // stalls in pieces of the step and the run stops at 0.674 s.
 TEST_CASE("A02 N four-bar (N = 40) on the defaults: the penalty rises near the singular position") {

@@ -53,10 +53,10 @@ struct ImplicitSettings {
   Scalar penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e2) : Scalar(1e3);
   /// The largest penalty factor a step raises penalty_factor to where the multipliers converge
   /// slowly: tenfold after two corrections with a fresh matrix that each shrank by less than
-  /// half, lowered tenfold after ten steps without (penalty_factor or less: never raised).
-  /// Near a singular configuration (the 40-bar chain) it halves the iterations per step; away
-  /// from one it does not act. Above about 1e5 the round-off of alpha Phi on coordinates of
-  /// tens of metres exceeds the correction tolerance.
+  /// half on constraints already met; the next step starts from penalty_factor again
+  /// (penalty_factor or less: never raised). Near a singular configuration (the 40-bar chain)
+  /// it saves a third of the iterations; away from one it does not act. Above about 1e5 the
+  /// round-off of alpha Phi on coordinates of tens of metres exceeds the correction tolerance.
   Scalar max_penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e4) : Scalar(1e5);
   bool reuse_factorization = true;
   /// Refactorize when a correction shrinks by less than this factor (stale matrix): at once

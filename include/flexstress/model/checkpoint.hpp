@@ -233,8 +233,6 @@ Result<std::vector<unsigned char>> save_checkpoint(const Model<Scalar>& m, const
   w.put(static_cast<std::int32_t>(in.converged_multipliers));
   w.put(in.revision);
   w.put(in.penalty);
-  w.put(in.penalty_boost);
-  w.put(static_cast<std::int32_t>(in.calm_steps));
   w.put(in.acceleration_scale);
   put_vector(w, in.vd_prev);
   put_vector(w, in.lambda_last);
@@ -348,10 +346,9 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
   auto& in = next.integrator;
   std::uint8_t flags[4] = {};
   for (auto& f : flags) ok = ok && r.get(f);
-  std::int32_t converged = 0, calm = 0;
+  std::int32_t converged = 0;
   ok = ok && r.get(converged) && r.get(in.revision) && r.get(in.penalty) &&
-       r.get(in.penalty_boost) && r.get(calm) && r.get(in.acceleration_scale) &&
-       get_vector(r, in.vd_prev) && get_vector(r, in.lambda_last) &&
+       r.get(in.acceleration_scale) && get_vector(r, in.vd_prev) && get_vector(r, in.lambda_last) &&
        get_vector(r, in.lambda_increment);
   if (ok) {
     set_step_size(next, next.settings.step);  // the step's constants (clears the factorization)
@@ -360,7 +357,6 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
     in.have_factorization = flags[2] != 0;
     in.predict_linear = flags[3] != 0;
     in.converged_multipliers = converged < 0 ? 0 : converged > 2 ? 2 : converged;
-    in.calm_steps = calm < 0 ? 0 : calm;
   }
   if (ok && in.have_factorization) {
     auto iteration = flat(in.iteration);

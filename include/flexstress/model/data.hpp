@@ -80,11 +80,9 @@ struct Data {
     bool have_factorization = false, has_previous = false;
     bool predict_linear = true;  ///< the linear predictor missed less than a constant one
     int converged_multipliers = 0;
-    /// The penalty's factor over ImplicitSettings::penalty_factor, raised where the multiplier
-    /// updates contract slowly (near a singular configuration) and lowered again after
-    /// calm_steps steps that converged without it.
+    /// The penalty's factor over ImplicitSettings::penalty_factor, raised within a step where
+    /// the multiplier updates contract slowly (near a singular configuration); 1 between steps.
     Scalar penalty_boost = 1;
-    int calm_steps = 0;
     std::uint64_t revision = 0;  ///< the Data revision the history was built for
     bool initialized = false;
     MatrixX iteration;

@@ -326,7 +326,6 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
   in.has_previous = false;
   in.converged_multipliers = 1;
   in.penalty_boost = Scalar(1);
-  in.calm_steps = 0;
   in.revision = d.revision;
   in.initialized = true;
   d.message.fill('\0');
@@ -387,7 +386,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   bool stale_for_next = false;
   bool converged = false, fresh = false, stale_step = false, restored = false, diverged = false;
   int growth = 0, slow = 0;
-  bool boosted = false, raised = false;
+  bool raised = false;
   Scalar previous = std::numeric_limits<Scalar>::infinity();
   Scalar residual_prev = std::numeric_limits<Scalar>::infinity();
   Scalar scaled_residual_prev = residual_prev;
@@ -463,14 +462,20 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     // The augmented Lagrangian's multiplier updates contract by about
     // 1 / (1 + penalty sigma^2) per iteration in a direction where the constraint Jacobian's
     // singular value is sigma: near a singular configuration slowly even with a fresh matrix.
-    // Two such iterations in a row raise the penalty tenfold (up to max_penalty_factor).
-    slow = fresh && it > 0 && previous > in.tol_x && previous > Scalar(0.5) * last ? slow + 1 : 0;
+    // Two such iterations in a row, on constraints already met, raise the penalty tenfold (up to
+    // max_penalty_factor). (With constraints not met the slow contraction is the step's
+    // nonlinearity, which a larger penalty, whose transient forces alpha Phi the matrix leaves
+    // out, makes worse: the flexible slider crank at 1 ms.)
+    slow = fresh && it > 0 && previous > in.tol_x && previous > Scalar(0.5) * last &&
+                   max_abs(d.phi) <= in.tol_x
+               ? slow + 1
+               : 0;
     if (slow >= 2 && s.penalty_factor > Scalar(0) &&
         in.penalty_boost * s.penalty_factor < s.max_penalty_factor) {
       in.penalty_boost =
           std::min(Scalar(10) * in.penalty_boost, s.max_penalty_factor / s.penalty_factor);
       in.have_factorization = false;
-      boosted = raised = true;
+      raised = true;
       slow = 0;
     }
     if (growth >= 2 &&
@@ -541,10 +546,8 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
       ++d.statistics.above_error_tolerance;
   }
   if (stale_for_next) in.have_factorization = false;
-  in.calm_steps = boosted ? 0 : in.calm_steps + 1;
-  if (in.penalty_boost > Scalar(1) && in.calm_steps >= 10) {
-    in.penalty_boost = std::max(Scalar(1), in.penalty_boost / Scalar(10));
-    in.calm_steps = 0;
+  if (in.penalty_boost > Scalar(1)) {  // raised for this step only
+    in.penalty_boost = Scalar(1);
     in.have_factorization = false;
   }
   // The multipliers of the converged equations are lambda* + alpha Phi at the final positions,

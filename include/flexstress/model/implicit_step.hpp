@@ -334,7 +334,8 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
 
 namespace detail {
 
-/// Back to the state the step started from (at t_n); the matrix is factorized anew.
+/// Back to the state the step started from (at t_n); the matrix is factorized anew, with the
+/// penalty a step starts from.
 template <class Scalar>
 void undo_step(Data<Scalar>& d, Scalar t_n) {
   auto& in = d.integrator;
@@ -344,6 +345,7 @@ void undo_step(Data<Scalar>& d, Scalar t_n) {
   d.a = in.a_n;
   d.t = t_n;
   in.have_factorization = false;
+  in.penalty_boost = Scalar(1);
 }
 
 /// One generalized-alpha step of size d.settings.step (step() below retries a failed one in

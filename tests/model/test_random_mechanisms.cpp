@@ -14,7 +14,8 @@
 // joints lock, and then the step must say so. The test reports how many ran to the end.
 //
 // FLEXSTRESS_RANDOM_MECHANISMS (default 200) sets how many seeds run, from
-// FLEXSTRESS_RANDOM_FIRST_SEED (default 1): a wider search is one environment variable away.
+// FLEXSTRESS_RANDOM_FIRST_SEED (default 1): a wider search is one environment variable away,
+// and ctest runs the default 200 as two halves in parallel (tests/CMakeLists.txt).
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -356,9 +357,14 @@ TEST_CASE("random mechanisms run on the defaults or fail naming the part, never 
                  "most "
               << worst_growth << "); the others stopped with:\n"
               << failures.str());
-  // A guard against regressions of the defaults on the first 200 seeds, which are the
-  // default: 177 of them ran (clang 14, -O1 and the Release build).
-  if (first == 1 && count == 200) CHECK(ran >= 175);
+  // A guard against regressions of the defaults on the first 200 seeds (the default run) and
+  // on their halves (ctest runs the halves in parallel): 178 of them ran, 86 and 92 (clang 14,
+  // -O1 and the Release build).
+  struct Guard {
+    long first, count, at_least;
+  };
+  for (const Guard g : {Guard{1, 200, 175}, Guard{1, 100, 85}, Guard{101, 100, 90}})
+    if (first == g.first && count == g.count) CHECK(ran >= g.at_least);
 }
 
 }  // namespace test_random_mechanisms

@@ -270,6 +270,51 @@ TEST_CASE("a step too large for the motion is taken in pieces and ends where it 
   }
 }
 
+TEST_CASE("a run that takes its steps in pieces remembers them, also through a checkpoint") {
+  // The spinning pendulum of the test above at h = 0.03 s: every step is split, and the next
+  // step starts with the pieces that passed instead of failing whole first (fewer iterations
+  // than a run that forgets them); a checkpoint taken between two split steps carries the piece
+  // size, so the restored run continues bit for bit.
+  const Pendulum p = make_pendulum();
+  Data<double> a(p.model);
+  a.settings.step = 0.03;
+  set_body_velocity(p.model, a, p.bob, Vector3d(0, 100, 0), Vector3d(0, 0, 100));
+  REQUIRE(initialize(p.model, a).ok());
+  std::vector<unsigned char> bytes;
+  for (int i = 0; i < 7; ++i) {
+    if (i == 3) {
+      REQUIRE(a.integrator.piece_level > 0);  // in the middle of the split phase
+      auto saved = save_checkpoint(p.model, a);
+      REQUIRE(saved.ok());
+      bytes = *saved;
+    }
+    REQUIRE(step(p.model, a) == StepStatus::ok);
+  }
+  CHECK(a.statistics.split_steps == 7);
+  Data<double> b(p.model);
+  REQUIRE(restore_checkpoint(p.model, b, bytes.data(), bytes.size()).ok());
+  CHECK(b.integrator.piece_level > 0);
+  for (int i = 3; i < 7; ++i) REQUIRE(step(p.model, b) == StepStatus::ok);
+  CHECK(b.t == a.t);
+  CHECK(b.q == a.q);
+  CHECK(b.v == a.v);
+  CHECK(b.statistics.iterations == a.statistics.iterations);
+  CHECK(b.statistics.substeps == a.statistics.substeps);
+  // Forgetting the pieces (each step tried whole, as a fresh Data restored from the state alone
+  // would) costs the failed whole steps' iterations again.
+  Data<double> c(p.model);
+  c.settings.step = 0.03;
+  set_body_velocity(p.model, c, p.bob, Vector3d(0, 100, 0), Vector3d(0, 0, 100));
+  REQUIRE(initialize(p.model, c).ok());
+  for (int i = 0; i < 7; ++i) {
+    c.integrator.piece_level = 0;
+    REQUIRE(step(p.model, c) == StepStatus::ok);
+  }
+  MESSAGE("iterations: " << a.statistics.iterations << " remembering the pieces, "
+                         << c.statistics.iterations << " trying each step whole first");
+  CHECK(a.statistics.iterations < c.statistics.iterations);
+}
+
 TEST_CASE("checkpoint: a restored run continues bit-identically; damaged ones are refused") {
   // Reference: the run that never stopped. The modified Newton reuses its factorization across
   // steps, so the restored Data must carry it over exactly, not just the state.

@@ -137,8 +137,11 @@ struct ImplicitSettings {
   bool accept_at_iteration_limit = false;
   /// A step whose Newton iteration diverges or does not converge is retried in halves, and a
   /// failing half in halves again, down to step / 2^max_step_halvings; the step still ends at
-  /// t + step, so a fixed-step caller keeps its clock. Only hard steps pay (counted in
-  /// StepStatistics::split_steps and substeps). 0: such a step fails at once. On the random
+  /// t + step, so a fixed-step caller keeps its clock. The next step starts with the pieces
+  /// that passed, and larger ones follow when two in a row passed easily (step() in
+  /// model/step.hpp), so a hard phase does not pay for a failed whole step at every step. Only
+  /// hard steps pay (counted in StepStatistics::split_steps and substeps). 0: such a step fails
+  /// at once. On the random
   /// mechanisms (tests/model/test_random_mechanisms.cpp) this turns most failed steps of
   /// fast, violent motions into converged ones.
   int max_step_halvings = 4;

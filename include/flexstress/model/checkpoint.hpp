@@ -4,12 +4,13 @@
 // bit for bit; a restore into a model that differs fails and says what differs (the first body,
 // joint, force, input or output set whose kind, size or parameters are not the checkpoint's).
 //
-// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 5, signature 0): the
+// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 6, signature 0): the
 // model description (entries of a label, a summary and a hash of the part's parameters), then
 // the Data. A callback law cannot be saved: the checkpoint records that there was one, and the
 // restoring Data must hold a callback law in that place (its own function is kept).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -36,7 +37,7 @@ struct ModelPart {
 
 namespace checkpoint_model_detail {
 
-inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 5, "model checkpoint"};
+inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 6, "model checkpoint"};
 
 template <class T>
 void put_raw(binary::Writer& w, const T& x) {
@@ -231,6 +232,8 @@ Result<std::vector<unsigned char>> save_checkpoint(const Model<Scalar>& m, const
   for (bool flag : {in.initialized, in.has_previous, in.have_factorization, in.predict_linear})
     w.put(static_cast<std::uint8_t>(flag));
   w.put(static_cast<std::int32_t>(in.converged_multipliers));
+  w.put(static_cast<std::int32_t>(in.piece_level));
+  w.put(in.h);
   w.put(in.revision);
   w.put(in.penalty);
   w.put(in.acceleration_scale);
@@ -346,12 +349,19 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
   auto& in = next.integrator;
   std::uint8_t flags[4] = {};
   for (auto& f : flags) ok = ok && r.get(f);
-  std::int32_t converged = 0;
-  ok = ok && r.get(converged) && r.get(in.revision) && r.get(in.penalty) &&
-       r.get(in.acceleration_scale) && get_vector(r, in.vd_prev) && get_vector(r, in.lambda_last) &&
-       get_vector(r, in.lambda_increment);
+  std::int32_t converged = 0, piece_level = 0;
+  Scalar piece = 0;
+  ok = ok && r.get(converged) && r.get(piece_level) && r.get(piece) && r.get(in.revision) &&
+       r.get(in.penalty) && r.get(in.acceleration_scale) && get_vector(r, in.vd_prev) &&
+       get_vector(r, in.lambda_last) && get_vector(r, in.lambda_increment);
   if (ok) {
     set_step_size(next, next.settings.step);  // the step's constants (clears the factorization)
+    // The pieces the step was taking (step()), when a valid part of the step.
+    if (piece_level > 0 && piece_level <= next.settings.max_step_halvings &&
+        piece == std::ldexp(next.settings.step, -piece_level)) {
+      detail::set_step_parameters(next, piece);
+      in.piece_level = piece_level;
+    }
     in.initialized = flags[0] != 0;
     in.has_previous = flags[1] != 0;
     in.have_factorization = flags[2] != 0;

@@ -74,6 +74,13 @@ struct Data {
   struct Integrator {
     Scalar alpha_m = 0, alpha_f = 0, gamma = 0, beta = 0;
     Scalar beta_prime = 0, gamma_prime = 0, penalty = 0, tol_x = 0;
+    /// The step the constants above are set for: settings.step, or a piece of it (step()).
+    Scalar h = 0;
+    /// The pieces the next step starts with, step / 2^piece_level (0: the whole step first);
+    /// step() keeps the size that last passed, so a hard phase does not fail each step whole.
+    int piece_level = 0;
+    /// The local error estimate of the last step or piece that converged (m, rad).
+    Scalar last_error_estimate = 0;
     /// The model's acceleration scale for the Newton tolerance: the larger of |g| and the
     /// largest acceleration at initialize() (ImplicitSettings::relative_acceleration_tolerance).
     Scalar acceleration_scale = 0;

@@ -55,7 +55,8 @@ namespace flexstress {
 template <class Scalar>
 void set_step_size(Data<Scalar>& d, Scalar h) {
   d.settings.step = h;
-  detail::set_step_parameters(d);
+  detail::set_step_parameters(d, h);
+  d.integrator.piece_level = 0;
 }
 
 /// Gives d other integrator settings, checked as finalize checks the model's; the next step
@@ -64,7 +65,8 @@ template <class Scalar>
 Status set_settings(const Model<Scalar>&, Data<Scalar>& d, const ImplicitSettings<Scalar>& s) {
   if (Status checked = check_settings(s); !checked) return checked;
   d.settings = s;
-  detail::set_step_parameters(d);
+  detail::set_step_parameters(d, s.step);
+  d.integrator.piece_level = 0;
   return Status::success();
 }
 
@@ -76,7 +78,8 @@ template <class Scalar>
 Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iterations = 100) {
   using detail::remember;
   auto& in = d.integrator;
-  detail::set_step_parameters(d);
+  detail::set_step_parameters(d, d.settings.step);
+  in.piece_level = 0;
   for (std::size_t k = 0; k < model.joints().size(); ++k) {
     const auto& j = model.joints()[k];
     if (j.law < 0 || !d.joint_active[k]) continue;
@@ -177,8 +180,8 @@ void undo_step(Data<Scalar>& d, Scalar t_n) {
   in.penalty_boost = Scalar(1);
 }
 
-/// One generalized-alpha step of size d.settings.step (step() below retries a failed one in
-/// pieces; with control_error, a step whose local error estimate exceeds
+/// One generalized-alpha step of size d.integrator.h (step() in model/step.hpp retries a
+/// failed one in pieces; with control_error, a step whose local error estimate exceeds
 /// local_error_tolerance fails too). On failure the state is left as it was before the step
 /// (except for constraint_violation, which keeps the step).
 template <class Scalar>
@@ -190,7 +193,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   if (!in.initialized || d.revision != in.revision) {
     if (!initialize(model, d).ok()) return StepStatus::constraint_violation;
   }
-  const Scalar h = s.step;
+  const Scalar h = in.h;
   in.q_n = d.q;
   in.v_n = d.v;
   in.vd_n = d.v_dot;
@@ -365,6 +368,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     Index worst = 0;
     const Scalar largest = in.tmp.size() > 0 ? in.tmp.cwiseAbs().maxCoeff(&worst) : Scalar(0);
     const Scalar estimate = std::abs(in.beta - Scalar(1) / Scalar(6)) * h * h * largest;
+    in.last_error_estimate = estimate;
     if (control_error && s.local_error_tolerance > Scalar(0) &&
         estimate > s.local_error_tolerance) {
       detail::undo_step(d, t_n);

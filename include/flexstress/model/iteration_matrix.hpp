@@ -21,10 +21,12 @@ namespace flexstress {
 
 namespace detail {
 
+/// The integrator's constants for steps (or pieces of a step) of size h.
 template <class Scalar>
-void set_step_parameters(Data<Scalar>& d) {
+void set_step_parameters(Data<Scalar>& d, Scalar h) {
   auto& in = d.integrator;
-  const Scalar rho = d.settings.spectral_radius, h = d.settings.step;
+  const Scalar rho = d.settings.spectral_radius;
+  in.h = h;
   in.alpha_m = (Scalar(2) * rho - Scalar(1)) / (rho + Scalar(1));
   in.alpha_f = rho / (rho + Scalar(1));
   in.gamma = Scalar(0.5) - in.alpha_m + in.alpha_f;

@@ -2,7 +2,8 @@
 // when it has to be. A step whose Newton iteration diverges or stalls, or whose local error
 // estimate exceeds ImplicitSettings::local_error_tolerance, is taken again in halves, and a
 // failing half in halves again, down to step / 2^max_step_halvings; the step still ends at
-// t + step, so a fixed-step caller keeps its clock. The state at the start is kept in storage
+// t + step, so a fixed-step caller keeps its clock, and the next step starts with the pieces
+// that passed. The state at the start is kept in storage
 // made with the Data: a split step allocates nothing.
 #pragma once
 
@@ -53,69 +54,107 @@ void restore_split_start(Data<Scalar>& d) {
   });
 }
 
+/// Sets the integrator's constants for pieces of size `piece`. Each piece starts from a fresh
+/// matrix: pieces are taken where the motion outruns one (Andrews' squeezer: 50 instead of 70
+/// iterations per step, reusing it); a run of equal pieces keeps its predictor's history.
+template <class Scalar>
+void use_piece(Data<Scalar>& d, Scalar piece) {
+  auto& in = d.integrator;
+  in.have_factorization = false;
+  if (in.h == piece) return;
+  set_step_parameters(d, piece);
+  // A predictor extrapolated over steps of another size would start Newton off.
+  in.has_previous = false;
+  in.converged_multipliers = std::min(in.converged_multipliers, 1);
+}
+
+/// Whether pieces twice as large would likely pass the local error control: the estimate
+/// grows as h^2 to h^3, so with a margin eight times the last one must be within tolerance.
+template <class Scalar>
+bool coarser_would_pass(const Data<Scalar>& d) {
+  const Scalar tolerance = d.settings.local_error_tolerance;
+  return tolerance <= Scalar(0) || Scalar(8) * d.integrator.last_error_estimate <= tolerance;
+}
+
 }  // namespace detail
 
 /// One step of size d.settings.step. Never allocates or throws. A step whose Newton iteration
 /// fails, or whose local error estimate exceeds settings.local_error_tolerance, is taken again
 /// in pieces (settings.max_step_halvings): halves, and a failing half in halves, still ending
-/// at t + step. On failure the state is left as it was before the step (except for the
-/// constraint_violation of an unsplit step, which keeps the step; a piece's undoes the whole
-/// step) and d.message says where.
+/// at t + step. The next step starts with pieces of the size that passed, and goes back to
+/// larger ones after two pieces in a row passed with an estimate eight times below the
+/// tolerance (a step-size controller whose sizes divide the caller's step, so that a fixed-step
+/// caller keeps its clock). On failure the state is left as it was before the step (except for
+/// the constraint_violation of an unsplit step, which keeps the step; a piece's undoes the
+/// whole step) and d.message says where.
 template <class Scalar>
 StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
-  const bool can_split = d.settings.max_step_halvings > 0;
-  const StepStatus whole = detail::step_whole(model, d, can_split);
-  if (!detail::may_pass_in_pieces(whole) || d.settings.max_step_halvings <= 0) return whole;
   auto& in = d.integrator;
-  const Scalar h = d.settings.step, t_start = d.t;
+  // A runtime change (a joint switched): restart from the state as it is; this also starts
+  // again from whole steps. The reason a restart failed stays in d.message.
+  if (!in.initialized || d.revision != in.revision) {
+    if (!initialize(model, d).ok()) return StepStatus::constraint_violation;
+  }
+  const int finest = d.settings.max_step_halvings;
+  int level = std::min(in.piece_level, finest);
+  if (level == 0) {
+    // The step as set (also directly in d.settings); a whole step reuses the matrix.
+    if (in.h != d.settings.step) detail::use_piece(d, d.settings.step);
+    const StepStatus whole = detail::step_whole(model, d, finest > 0);
+    if (!detail::may_pass_in_pieces(whole) || finest <= 0) return whole;
+    level = 1;
+  }
+  const Scalar h = d.settings.step, h_start = in.h, t_start = d.t;
   const bool had_previous = in.has_previous;
-  const int had_converged = in.converged_multipliers;
+  const int had_converged = in.converged_multipliers, had_level = in.piece_level;
   detail::save_split_start(d);
   ++d.statistics.split_steps;
   StepStatus result = StepStatus::ok;
-  long pieces = 0;  // each counted as a step by step_whole; the caller took one
-  int level = 1;
+  long pieces = 0;          // each counted as a step by step_whole; the caller took one
+  int passed = 0;           // pieces passed in a row at this level
   Scalar done = Scalar(0);  // of h
   while (done < Scalar(1)) {
-    // The piece: h / 2^level, or what is left of the step.
-    const Scalar piece = std::min(std::ldexp(Scalar(1), -level), Scalar(1) - done);
-    set_step_size(d, piece * h);
-    // A predictor extrapolated over steps of another size would start Newton off.
-    in.has_previous = false;
-    in.converged_multipliers = std::min(in.converged_multipliers, 1);
-    const StepStatus st =
-        detail::step_whole(model, d, /*control_error=*/level < d.settings.max_step_halvings);
+    // Pieces of h / 2^level; the level changes only at a larger piece's boundary, so the last
+    // piece ends at h exactly.
+    const Scalar piece = std::ldexp(Scalar(1), -level);
+    detail::use_piece(d, piece * h);
+    const StepStatus st = detail::step_whole(model, d, /*control_error=*/level < finest);
     if (st == StepStatus::ok || st == StepStatus::budget_reached) {
       ++d.statistics.substeps;
       ++pieces;
+      ++passed;
       if (st == StepStatus::budget_reached) result = st;
       done += piece;
-      // Back to larger pieces once the smaller ones have reached a larger piece's boundary.
-      while (level > 1 && std::ldexp(done, level - 1) == std::floor(std::ldexp(done, level - 1)))
+      if (level > 1 && passed >= 2 && detail::coarser_would_pass(d) &&
+          std::ldexp(done, level - 1) == std::floor(std::ldexp(done, level - 1))) {
         --level;
+        passed = 0;
+      }
       continue;
     }
-    if (detail::may_pass_in_pieces(st) && level < d.settings.max_step_halvings) {
+    if (detail::may_pass_in_pieces(st) && level < finest) {
       ++level;
+      passed = 0;
       continue;
     }
     // Not even the smallest piece passes: the step fails as a whole; the message is the
     // smallest piece's.
     detail::restore_split_start(d);
     d.statistics.steps -= pieces;
+    detail::set_step_parameters(d, h_start);
     in.has_previous = had_previous;
     in.converged_multipliers = had_converged;
+    in.piece_level = had_level;
     d.t = t_start;
-    set_step_size(d, h);
     return st;
   }
-  set_step_size(d, h);
   d.t = t_start + h;
   d.statistics.steps -= pieces - 1;
-  // The next step extrapolates from a whole step's history, which a split step does not leave.
-  in.has_previous = false;
-  in.converged_multipliers = std::min(in.converged_multipliers, 1);
-  d.message.fill('\0');  // the step passed: why its whole failed is no failure to report
+  // The next step starts with this step's last pieces, or twice as large ones when they
+  // passed easily (the whole step again from pieces of a half).
+  in.piece_level = passed >= 2 && detail::coarser_would_pass(d) ? level - 1 : level;
+  if (in.piece_level == 0) detail::use_piece(d, h);
+  d.message.fill('\0');  // the step passed: why a larger piece failed is no failure to report
   return result;
 }
 

@@ -86,7 +86,7 @@ void explain_local_error(const Model<Scalar>& model, Data<Scalar>& d, Scalar t_n
   }
   std::snprintf(d.message.data(), d.message.size(),
                 "step from t = %g of %g s: local error estimate %.3g above the tolerance %.3g%s",
-                static_cast<double>(t_n), static_cast<double>(d.settings.step),
+                static_cast<double>(t_n), static_cast<double>(d.integrator.h),
                 static_cast<double>(estimate),
                 static_cast<double>(d.settings.local_error_tolerance), part);
 }
@@ -113,7 +113,7 @@ template <class Scalar>
 void explain_step_failure(const Model<Scalar>& model, Data<Scalar>& d, StepStatus status,
                           Scalar t_n, int iterations, Scalar size, Scalar tolerance) {
   char part[160] = "";
-  const Scalar h = d.settings.step;
+  const Scalar h = d.integrator.h;
   Scalar turn = Scalar(0);
   const int fastest = fastest_turning_body(model, d.integrator.v_n, h, turn);
   char turning[192] = "";

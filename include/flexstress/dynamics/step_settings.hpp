@@ -39,6 +39,15 @@ struct ImplicitSettings {
   /// further corrections only chase round-off; for the crane (gravity) below the floor.
   Scalar relative_acceleration_tolerance =
       std::is_same_v<Scalar, float> ? Scalar(1e-3) : Scalar(1e-6);
+  /// Newton also stops when the error its last correction leaves is estimated within this
+  /// fraction of the tolerance: theta / (1 - theta) |dx_k|, with the contraction rate theta =
+  /// |dx_k| / |dx_k-1| (Hairer & Wanner, Solving ODEs II, IV.8). A correction that shrank a
+  /// hundredfold needs no further correction to show it. Whole steps only: the pieces of a split
+  /// step, where the motion outruns the matrix, do not trust the rate (applied to them too,
+  /// 176 instead of 179 of the 200 random mechanisms ran). Measured: the crane 2.12 instead of
+  /// 2.33 iterations per step, its figures unchanged; the flexible four-bar 3.08 instead of 3.49.
+  /// 0: only a correction within the tolerance stops Newton.
+  Scalar newton_error_estimate_fraction = Scalar(1);
   /// Floor of the position tolerances: the round-off of coordinates of order one, scaled by
   /// the largest coordinate when that is larger.
   Scalar position_floor = Scalar(100) * std::numeric_limits<Scalar>::epsilon();
@@ -169,6 +178,9 @@ Status check_settings(const ImplicitSettings<Scalar>& s) {
     return bad(
         "acceleration_tolerance and relative_acceleration_tolerance must be finite and "
         "not negative");
+  if (!(s.newton_error_estimate_fraction >= Scalar(0)) ||
+      !(s.newton_error_estimate_fraction <= Scalar(1)))
+    return bad("newton_error_estimate_fraction must be in [0, 1] (0: off)");
   if (!non_negative(s.local_error_tolerance))
     return bad("local_error_tolerance must be finite and not negative (0: no control)");
   if (!non_negative(s.velocity_drift_limit))
@@ -196,8 +208,9 @@ struct StepStatistics {
   /// Pieces kept although their estimate exceeded local_error_tolerance: the smallest ones
   /// (step / 2^max_step_halvings), which are not split further.
   long above_error_tolerance = 0;
-  /// The last step's final Newton correction over its tolerance: at most 1 when it converged,
-  /// how far from converged a step kept at the budget is.
+  /// The last step's final Newton correction over its tolerance (or the error it leaves, when
+  /// Newton stopped on that estimate: newton_error_estimate_fraction): at most 1 when it
+  /// converged, how far from converged a step kept at the budget is.
   double last_correction = 0;
 };
 

@@ -104,6 +104,7 @@ int fs_settings_get(const fs_data* d, fs_settings* out) {
   out->max_step_halvings = s.max_step_halvings;
   out->velocity_drift_limit = s.velocity_drift_limit;
   out->project_velocities = s.project_velocities ? 1 : 0;
+  out->newton_error_estimate_fraction = s.newton_error_estimate_fraction;
   return FS_OK;
 }
 
@@ -121,6 +122,7 @@ int fs_settings_set(fs_data* d, const fs_settings* in) {
     s.max_step_halvings = in->max_step_halvings;
     s.velocity_drift_limit = in->velocity_drift_limit;
     s.project_velocities = in->project_velocities != 0;
+    s.newton_error_estimate_fraction = in->newton_error_estimate_fraction;
     const fsx::Status st = fsx::set_settings(*d->model, d->data, s);
     if (!st.ok()) return fail(FS_ERROR_INVALID_ARGUMENT, "fs_settings_set: " + st.error().what());
     return int(FS_OK);

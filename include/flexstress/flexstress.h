@@ -233,6 +233,7 @@ typedef struct fs_settings {
   int max_step_halvings;                  /* a failing step is retried in down to 2^-n pieces */
   double velocity_drift_limit;            /* projects drifting velocities; 0: never */
   int project_velocities;                 /* 1: after every step */
+  double newton_error_estimate_fraction;  /* in [0, 1]: stop on the estimated error; 0: off */
 } fs_settings;
 int fs_settings_get(const fs_data* d, fs_settings* out);
 int fs_settings_set(fs_data* d, const fs_settings* settings);

@@ -439,10 +439,16 @@ static void check_errors(const char* modal_file, const reference* r) {
   CHECK(fs_settings_set(d, &settings) == FS_ERROR_INVALID_ARGUMENT);
   CHECK(strstr(fs_last_error(), "max_step_halvings") != NULL);
   settings.max_step_halvings = 0;
+  CHECK(settings.newton_error_estimate_fraction == 1.0);
+  settings.newton_error_estimate_fraction = 2.0;
+  CHECK(fs_settings_set(d, &settings) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_last_error(), "newton_error_estimate_fraction") != NULL);
+  settings.newton_error_estimate_fraction = 0.0;
   settings.step = 5e-4;
   CHECK(fs_settings_set(d, &settings) == FS_OK);
   CHECK(fs_settings_get(d, &settings) == FS_OK);
   CHECK(settings.max_step_halvings == 0 && settings.relative_acceleration_tolerance == 1e-8);
+  CHECK(settings.newton_error_estimate_fraction == 0.0);
   CHECK(settings.step == 5e-4);
   CHECK(fs_settings_set(d, NULL) == FS_ERROR_NULL);
   fs_data_destroy(d);

@@ -32,7 +32,7 @@ add_library(flexstress_header_check OBJECT ${_all_sources})
 target_link_libraries(flexstress_header_check PRIVATE flexstress::flexstress)
 target_compile_options(flexstress_header_check PRIVATE ${_check_options})
 target_compile_definitions(flexstress_header_check PRIVATE EIGEN_RUNTIME_NO_MALLOC)
-# Eigen/Core, parsed once for all units: it was more than half of each unit's compile time.
+# Eigen/Core, parsed once for all units instead of in each (more than half of a unit's time).
 # Every Eigen module includes it, so the check still catches a header that leaves out the
 # module it uses (Dense, Sparse, Geometry, ...). A precompiled header counts as a system header,
 # but the header under check is included by the unit itself, so its warnings still count.

@@ -87,6 +87,9 @@ struct Data {
     bool have_factorization = false, has_previous = false;
     bool predict_linear = true;  ///< the linear predictor missed less than a constant one
     int converged_multipliers = 0;
+    /// Steps that refactorize at their start after reused matrices went stale in a row, and
+    /// how many of them are left (ImplicitSettings::refactor_backoff_limit).
+    int reuse_backoff = 0, fresh_starts_left = 0;
     /// The penalty's factor over ImplicitSettings::penalty_factor, raised within a step where
     /// the multiplier updates contract slowly (near a singular configuration); 1 between steps.
     Scalar penalty_boost = 1;

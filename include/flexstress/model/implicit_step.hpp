@@ -158,6 +158,8 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
   in.has_previous = false;
   in.converged_multipliers = 1;
   in.penalty_boost = Scalar(1);
+  in.reuse_backoff = 0;
+  in.fresh_starts_left = 0;
   in.revision = d.revision;
   in.initialized = true;
   d.message.fill('\0');
@@ -218,6 +220,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   d.t = t_n + h;
   int it = 0;
   bool stale_for_next = false;
+  const bool started_reused = in.have_factorization;
   bool converged = false, fresh = false, stale_step = false, restored = false, diverged = false;
   int growth = 0, slow = 0;
   bool raised = false, met_to_first_order = false;
@@ -401,6 +404,20 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
         std::max(d.statistics.largest_error_estimate, static_cast<double>(estimate));
     if (s.local_error_tolerance > Scalar(0) && estimate > s.local_error_tolerance)
       ++d.statistics.above_error_tolerance;
+  }
+  // Matrices that go stale in the first step that reuses them (the flexible four-bar, a
+  // swinging pendulum) cost two extra corrections each time: after each such miss in a row,
+  // twice as many steps refactorize at their start (up to refactor_backoff_limit).
+  if (s.refactor_after_stale_step) {
+    if (started_reused) {
+      in.reuse_backoff = stale_for_next ? std::min(std::max(1, 2 * in.reuse_backoff),
+                                                   std::max(1, s.refactor_backoff_limit))
+                                        : 0;
+      in.fresh_starts_left = in.reuse_backoff;
+    } else if (in.fresh_starts_left > 0) {
+      --in.fresh_starts_left;
+    }
+    stale_for_next = stale_for_next || in.fresh_starts_left > 0;
   }
   if (stale_for_next) in.have_factorization = false;
   if (in.penalty_boost > Scalar(1)) {  // raised for this step only

@@ -462,12 +462,12 @@ TEST_CASE("stress suite: a flexible four-bar with redundant hinges passing near 
 // library's reference (A02_solution_data.txt, B0's x and y over 20 s) is a numerical solution
 // of the same motion.
 //
-// Fails on the defaults, so skipped for now: Newton does not converge at t = 0.675 s, 47 ms
+// Fails on the defaults, so skipped for now: Newton does not converge at t = 0.716 s, 6 ms
 // before the first singular configuration ("Newton not converged in 30 iterations (correction
-// 1.12e-12, tolerance 8.99e-13)" in the step's smallest piece); up to there x is within 4.1e-7 m of
-// the exact motion. The example passes them with a penalty factor of 1e5, steps kept at the
-// iteration budget and velocity projection (four_bar_chain::make_chain, docs/dynamics.md), which
-// the suite's defaults replace.
+// 9.75e-13, tolerance 8.99e-13)" in a piece of 1/8 of the step); up to there x is within
+// 4.3e-7 m of the exact motion. The example passes them with a penalty factor of 1e5, steps kept at
+// the iteration budget and velocity projection (four_bar_chain::make_chain, docs/dynamics.md),
+// which the suite's defaults replace.
 TEST_CASE("stress suite: the 40-bar chain (IFToMM A02) through its singular configurations" *
           doctest::skip()) {
   const auto chain = four_bar_chain::make_chain(40, 1e-3);

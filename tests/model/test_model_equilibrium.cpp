@@ -102,4 +102,47 @@ TEST_CASE("runtime model: static equilibrium of a clamped cantilever matches the
   CHECK(joint_reaction(*m, d, JointId{0}).force.y() == doctest::Approx(weight).epsilon(1e-6));
 }
 
+TEST_CASE("runtime model: static equilibrium of a platform that only its suspension spring holds") {
+  // A 500 kg platform on a vertical slide, carried by a 2e5 N/m spring whose rest length is its
+  // start height, with a flexible cantilever mast on it; the spring is ten times stiffer than
+  // the iteration's regularization c M (1 Hz), which alone made the iteration diverge (NaN).
+  // Reference: the spring's sag under the whole weight, (m_platform + m_beam) g / k, and the
+  // mast's own tip deflection under its weight, q L^4 / (8 E I) (Euler-Bernoulli).
+  auto beam = testing::make_beam_body(kLength, kSection, 24, {0.0}, 16);
+  constexpr double platform_mass = 500, stiffness = 2e5, g = 9.81;
+  ModelBuilder<double> b;
+  const BodyId platform =
+      b.add_rigid_body("platform", platform_mass, Vector3d::Zero(), Matrix3d::Identity() * 50.0);
+  b.set_initial_pose(platform, Vector3d(0, 0, 1));
+  const BodyId mast = b.add_flexible_body("mast", beam.data, 16);
+  b.set_initial_pose(mast, Vector3d(0, 0, 1));
+  b.add_joint("slide", JointKind::prismatic, b.add_marker("rail", b.ground(), -1),
+              b.add_marker("carriage", platform, -1));
+  b.add_joint("mast root", JointKind::fixed, b.add_marker("socket", platform, -1),
+              b.add_marker("root", mast, beam.interface_nodes[0]));
+  SpringDamperParams<double> spring;
+  spring.stiffness = stiffness;
+  spring.rest_length = 1.0;
+  b.add_spring_damper("suspension", b.add_marker("base", b.ground(), -1),
+                      b.add_marker("seat", platform, -1), spring);
+  const MarkerId root = b.add_marker("mast at root", mast, beam.interface_nodes[0]);
+  const MarkerId mast_tip = b.add_marker("mast tip", mast, beam.line.nodes.back());
+  b.set_gravity(Vector3d(0, 0, -g));
+  auto m = b.finalize();
+  REQUIRE_MESSAGE(m.ok(), m.error().what());
+  Data<double> d(*m);
+  const Status eq = solve_static_equilibrium(*m, d);
+  REQUIRE_MESSAGE(eq.ok(), (eq.ok() ? std::string() : eq.error().what()));
+  const double beam_mass = 7850 * kSection.area * kLength;
+  const double sag = 1.0 - body_position(*m, d, platform).z();
+  const double tip =
+      marker_frame(*m, d, mast_tip).origin.z() - marker_frame(*m, d, root).origin.z();
+  const double q = 7850 * kSection.area * g;
+  const double tip_theory = -q * std::pow(kLength, 4) / (8 * 210e9 * kSection.iy);
+  MESSAGE("sag " << sag << " m (spring: " << (platform_mass + beam_mass) * g / stiffness
+                 << "), mast tip " << tip << " m (beam theory " << tip_theory << ")");
+  CHECK(sag == doctest::Approx((platform_mass + beam_mass) * g / stiffness).epsilon(1e-9));
+  CHECK(tip == doctest::Approx(tip_theory).epsilon(5e-3));
+}
+
 }  // namespace test_model_equilibrium

@@ -286,12 +286,13 @@ struct BodyKernelImpl {
       Eigen::Map<Eigen::Matrix<Scalar, 1, 6>> rigid(row);
       rigid = s.rigid;
       if constexpr (N != 0) {
-        // g^T Psi as a sum of Psi's rows, over the vectors the joint reads (the others carry
+        // g^T Psi as a sum of Psi's rows, over the vectors the row reads (the others carry
         // no weight): whole rows of the mode count at a time.
         Eigen::Map<typename ModalSizes<Scalar, N>::RowN> modal(row + 6, n);
+        const unsigned used = parts & s.parts;
         bool first = true;
         for (unsigned v = 0; v < 4; ++v) {
-          if (!(parts & (1u << v))) continue;
+          if (!(used & (1u << v))) continue;
           const auto& psi = vectors[v]->psi;
           const Vec3<Scalar>& g = s.weight[v];
           if (first)

@@ -125,6 +125,10 @@ struct RowSide {
   Eigen::Matrix<Scalar, 1, 6> rigid = Eigen::Matrix<Scalar, 1, 6>::Zero();
   std::array<Vec3<Scalar>, 4> weight{Vec3<Scalar>::Zero(), Vec3<Scalar>::Zero(),
                                      Vec3<Scalar>::Zero(), Vec3<Scalar>::Zero()};
+  /// The marker vectors (MarkerParts bits) this row weighs: its modal part sums Psi over
+  /// these only (a revolute's coincidence rows read the origin, its perpendicularity rows one
+  /// axis each, although the joint as a whole reads three vectors).
+  unsigned parts = 0;
 
   // Written out in scalars: these run for every row of every joint at every Newton iterate,
   // and as Eigen expressions GCC left their 3-vector products to out-of-line calls.
@@ -154,6 +158,7 @@ struct RowSide {
     RowSide r;
     r.rigid = s * a.rigid + t * b.rigid;
     for (std::size_t k = 0; k < 4; ++k) r.weight[k] = s * a.weight[k] + t * b.weight[k];
+    r.parts = a.parts | b.parts;
     return r;
   }
 
@@ -174,6 +179,7 @@ struct RowSide {
     rigid(5) += u(0) * bb(1) - u(1) * bb(0);
     Vec3<Scalar>& w = weight[static_cast<std::size_t>(v)];
     for (int c = 0; c < 3; ++c) w(c) += bb(c);
+    parts |= 1u << v;
   }
 };
 

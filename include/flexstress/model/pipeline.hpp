@@ -311,11 +311,11 @@ void add_jacobian_transpose_times(const Model<Scalar>& model, const Data<Scalar>
     }
 }
 
-/// y = B x.
+/// y = B x (y of num_constraints() entries).
 template <class Scalar, class X, class Y>
 void jacobian_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& x, Y& y) {
+  y.setZero();  // the joints' rows tile it; at once, not a call per joint
   for (const auto& j : model.joints()) {
-    y.segment(j.row, j.equations).setZero();
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? j.body_i : j.body_j;
       if (body < 0) continue;

@@ -25,42 +25,29 @@ if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
   endif()
 endif()
 
-# The precompute (FE kernel, reductions, sub-model influence matrices) compiled once, in one
-# object library, and declared `extern template` in every other translation unit of the tests,
-# examples and benchmarks (see include/flexstress/precompute_instances.hpp). Without this each
-# translation unit that calls the precompute spends tens of seconds instantiating it again.
-# In parts (include/flexstress/precompute_instances.hpp), compiled in parallel: no job over
-# 1.5 GB with GCC, the default compiler (-O3: 0.72 to 1.31 GB each; the whole in one unit took
-# 3.0 GB), at about three times the total compile time of one unit (every part parses the
-# headers). Clang compiles the one unit in 1.6 GB and half of GCC's time, so it keeps it.
-if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
-  set(_flexstress_precompute_parts_default ON)
-else()
-  set(_flexstress_precompute_parts_default OFF)
+# The precompute (FE kernel, reductions, sub-model influence matrices) compiled once, and
+# declared `extern template` in every other translation unit of the tests, examples and
+# benchmarks (see include/flexstress/precompute_instances.hpp): without this each unit that
+# calls the precompute spends tens of seconds instantiating it again. flexstress::compiled holds
+# it, as it does for users; a build without that library compiles the same sources here.
+if(NOT FLEXSTRESS_BUILD_COMPILED)
+  add_library(flexstress_precompute_instances OBJECT ${FLEXSTRESS_PRECOMPUTE_SOURCES})
+  target_link_libraries(flexstress_precompute_instances PUBLIC flexstress::flexstress
+    flexstress_dev_flags)
 endif()
-option(FLEXSTRESS_PRECOMPUTE_PARTS "Compile the precompute in parts of under 1.5 GB each"
-  ${_flexstress_precompute_parts_default})
-if(FLEXSTRESS_PRECOMPUTE_PARTS)
-  set(_precompute_parts "")
-  foreach(_part RANGE 1 12)
-    list(APPEND _precompute_parts "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances_${_part}.cpp")
-  endforeach()
-else()
-  set(_precompute_parts "${PROJECT_SOURCE_DIR}/tests/support/precompute_instances.cpp")
-endif()
-add_library(flexstress_precompute_instances OBJECT ${_precompute_parts})
-target_link_libraries(flexstress_precompute_instances PUBLIC flexstress::flexstress flexstress_dev_flags)
 
-# With PCH, the extern declarations come from a precompiled header (flexstress.hpp, then
-# precompute_instances.hpp), which must be the first thing a unit includes.
+# The headers declare the precompute extern themselves (core/precompute.hpp). With PCH, the
+# library comes precompiled (flexstress.hpp), which must then be the first thing a unit includes.
 function(flexstress_use_precompute_instances target)
   cmake_parse_arguments(arg "PCH" "" "" ${ARGN})
-  target_sources(${target} PRIVATE $<TARGET_OBJECTS:flexstress_precompute_instances>)
-  target_compile_definitions(${target} PRIVATE FLEXSTRESS_EXTERN_PRECOMPUTE)
+  if(TARGET flexstress_compiled)
+    target_link_libraries(${target} PRIVATE flexstress::compiled)
+  else()
+    target_sources(${target} PRIVATE $<TARGET_OBJECTS:flexstress_precompute_instances>)
+    target_compile_definitions(${target} PRIVATE FLEXSTRESS_EXTERN_PRECOMPUTE)
+  endif()
   if(arg_PCH)
     target_precompile_headers(${target} PRIVATE <flexstress/flexstress.hpp>
-      <flexstress/precompute_instances.hpp> ${arg_UNPARSED_ARGUMENTS})
-  else()
-    target_compile_options(${target} PRIVATE -include flexstress/precompute_instances.hpp)
+      ${arg_UNPARSED_ARGUMENTS})
   endif()
 endfunction()

@@ -178,3 +178,15 @@ Result<VectorXd> load_vector(const DofMap& dofs, const std::vector<NodalLoad>& l
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_ASSEMBLY(X)                                                    \
+  X(1, Result<fe::SparseMatrixd>, fe::assemble_stiffness, (const fe::Mesh&, const fe::DofMap&)) \
+  X(1, Result<fe::SparseMatrixd>, fe::assemble_mass,                                            \
+    (const fe::Mesh&, const fe::DofMap&, const fe::MassOptions&))                               \
+  X(1, Result<fe::AssembledModel>, fe::assemble,                                                \
+    (const fe::Mesh&, const fe::BoundaryConditions&, const fe::MassOptions&))                   \
+  X(1, Result<VectorXd>, fe::load_vector, (const fe::DofMap&, const std::vector<fe::NodalLoad>&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_ASSEMBLY)
+}  // namespace flexstress

@@ -257,8 +257,11 @@ BeamSectionForces beam_section_forces(const Mesh& mesh, const BeamElement& b,
   return f;
 }
 
-/// Axial (normal) stress at a fibre (y, z) of the section (local axes), at xi:
-/// sigma_xx = N / A - Mz y / iz + My z / iy, i.e. E (u' - y v'' - z w'').
+/// Axial (normal) stress at a fibre (y, z) of the section (local axes), at xi (0 at the
+/// element's first node, 1 at its second): sigma_xx = N / A - Mz y / iz + My z / iy, i.e.
+/// E (u' - y v'' - z w''). u_global: the two nodes' displacements and rotations in global axes,
+/// [u(0); theta(0); u(1); theta(1)] (a flexible body's mode k: phi_r(node).col(k) and
+/// phi_theta(node).col(k) of its ModalBodyData, for a stress output row).
 FLEXSTRESS_PRECOMPUTE
 double beam_fibre_stress(const Mesh& mesh, const BeamElement& b, const Vector12d& u_global,
                          double xi, double y, double z) {
@@ -268,3 +271,13 @@ double beam_fibre_stress(const Mesh& mesh, const BeamElement& b, const Vector12d
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_BEAM3D(X)                                           \
+  X(3, fe::Matrix12d, fe::beam_stiffness, (const fe::Mesh&, const fe::BeamElement&)) \
+  X(3, fe::Matrix12d, fe::beam_mass,                                                 \
+    (const fe::Mesh&, const fe::BeamElement&, const fe::MassOptions&))               \
+  X(3, void, fe::BeamGeometry::interpolation, (double, fe::Matrix3x12d&, fe::Matrix3x12d&) const)
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_BEAM3D)
+}  // namespace flexstress

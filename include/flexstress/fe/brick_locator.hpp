@@ -177,3 +177,11 @@ Result<BrickPoint> BrickLocator::locate(const Vector3d& p) const {
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_BRICK_LOCATOR(X)                                    \
+  X(5, Result<fe::BrickLocator>, fe::BrickLocator::build, (const fe::Mesh&, double)) \
+  X(5, Result<fe::BrickPoint>, fe::BrickLocator::locate, (const Vector3d&) const)
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_BRICK_LOCATOR)
+}  // namespace flexstress

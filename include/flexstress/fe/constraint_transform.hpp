@@ -283,3 +283,11 @@ Result<ConstraintTransform> ConstraintTransform::build(const Mesh& mesh, const D
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_CONSTRAINT_TRANSFORM(X)                \
+  X(2, Result<fe::ConstraintTransform>, fe::ConstraintTransform::build, \
+    (const fe::Mesh&, const fe::DofMap&, const fe::BoundaryConditions&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_CONSTRAINT_TRANSFORM)
+}  // namespace flexstress

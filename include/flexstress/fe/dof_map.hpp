@@ -94,3 +94,10 @@ Result<DofMap> DofMap::build(const Mesh& mesh) {
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_DOF_MAP(X) \
+  X(1, Result<fe::DofMap>, fe::DofMap::build, (const fe::Mesh&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_DOF_MAP)
+}  // namespace flexstress

@@ -198,3 +198,11 @@ Result<EigenSolution> solve_eigen(const SparseMatrixd& k, const SparseMatrixd& m
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_EIGEN_SOLVER(X)   \
+  X(4, Result<fe::EigenSolution>, fe::solve_eigen, \
+    (const fe::SparseMatrixd&, const fe::SparseMatrixd&, const fe::EigenOptions&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_EIGEN_SOLVER)
+}  // namespace flexstress

@@ -135,3 +135,11 @@ Result<SparseMatrixd> assemble_geometric_stiffness(const Mesh& mesh, const DofMa
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_GEOMETRIC_STIFFNESS(X)             \
+  X(4, Result<fe::SparseMatrixd>, fe::assemble_geometric_stiffness, \
+    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_GEOMETRIC_STIFFNESS)
+}  // namespace flexstress

@@ -308,3 +308,17 @@ Hex8Coordinates hex8_coordinates(const Mesh& mesh, const Hex8Element& h) {
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_HEX8(X)                                                     \
+  X(3, Result<fe::Matrix24d>, fe::hex8_stiffness,                                            \
+    (const fe::Hex8Coordinates&, const fe::Material&, fe::Hex8Formulation, Index))           \
+  X(3, Result<fe::Matrix24d>, fe::hex8_mass,                                                 \
+    (const fe::Hex8Coordinates&, double, fe::MassLumping, Index))                            \
+  X(3, Result<fe::Hex8Kinematics>, fe::hex8_kinematics, (const fe::Hex8Coordinates&, Index)) \
+  X(5, Result<fe::Hex8StressOperator>, fe::hex8_stress_operator,                             \
+    (const fe::Hex8Coordinates&, const fe::Material&, fe::Hex8Formulation, const Vector3d&,  \
+     Index))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_HEX8)
+}  // namespace flexstress

@@ -527,3 +527,10 @@ Result<RhsAttachmentMesh> make_rhs_attachment_mesh(const RhsAttachmentSpec& spec
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_RHS_ATTACHMENT_MESH(X) \
+  X(4, Result<fe::RhsAttachmentMesh>, fe::make_rhs_attachment_mesh, (const fe::RhsAttachmentSpec&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_RHS_ATTACHMENT_MESH)
+}  // namespace flexstress

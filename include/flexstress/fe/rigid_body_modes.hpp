@@ -67,3 +67,10 @@ std::string describe_rigid_motion(const Eigen::Ref<const VectorXd>& v) {
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_RIGID_BODY_MODES(X) \
+  X(4, MatrixXd, fe::rigid_body_modes, (const fe::Mesh&, const fe::DofMap&, const Vector3d&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_RIGID_BODY_MODES)
+}  // namespace flexstress

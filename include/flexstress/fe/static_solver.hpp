@@ -146,3 +146,14 @@ VectorXd StaticSolver::solve(const VectorXd& f_all) const {
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_STATIC_SOLVER(X)                                    \
+  X(11, Result<fe::StaticSolver>, fe::StaticSolver::factorize,                       \
+    (const fe::Mesh&, const fe::AssembledModel&))                                    \
+  X(11, VectorXd, fe::StaticSolver::solve_free, (const VectorXd&) const)             \
+  X(11, VectorXd, fe::StaticSolver::solve, (const VectorXd&, const VectorXd&) const) \
+  X(11, VectorXd, fe::StaticSolver::solve, (const VectorXd&) const)
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_STATIC_SOLVER)
+}  // namespace flexstress

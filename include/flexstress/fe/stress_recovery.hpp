@@ -313,3 +313,22 @@ Result<Vector6d> stress_at_point(const Mesh& mesh, const DofMap& dofs, const Bri
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_STRESS_RECOVERY(X)                                              \
+  X(5, Result<fe::SparseMatrixd>, fe::nodal_stress_operator,                                     \
+    (const fe::Mesh&, const fe::DofMap&, const std::vector<Index>&))                             \
+  X(5, Result<fe::SparseMatrixd>, fe::point_stress_operator,                                     \
+    (const fe::Mesh&, const fe::DofMap&, const std::vector<fe::BrickPoint>&))                    \
+  X(5, Result<fe::SparseMatrixd>, fe::point_stress_operator,                                     \
+    (const fe::Mesh&, const fe::DofMap&, const fe::BrickLocator&, const std::vector<Vector3d>&)) \
+  X(6, Result<fe::NodalStresses>, fe::nodal_stresses,                                            \
+    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                       \
+  X(6, Result<std::vector<fe::Hex8GaussStresses>>, fe::gauss_point_stresses,                     \
+    (const fe::Mesh&, const fe::DofMap&, const VectorXd&))                                       \
+  X(6, Result<fe::Vector6d>, fe::stress_at_point,                                                \
+    (const fe::Mesh&, const fe::DofMap&, const fe::BrickLocator&, const VectorXd&,               \
+     const Vector3d&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_STRESS_RECOVERY)
+}  // namespace flexstress

@@ -211,3 +211,13 @@ Status write_vtu(const std::string& path, const Mesh& mesh, const VtkData& data 
 }
 
 }  // namespace flexstress::fe
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_FE_VTK_WRITER(X)             \
+  X(6, Result<fe::VtkData>, fe::standard_fields,           \
+    (const fe::Mesh&, const fe::DofMap&, const VectorXd&)) \
+  X(6, Status, fe::write_vtu,                              \
+    (const std::string&, const fe::Mesh&, const fe::VtkData&, const fe::VtkOptions&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_FE_VTK_WRITER)
+}  // namespace flexstress

@@ -79,3 +79,13 @@ Result<BodyStressModes> body_stress_modes(const fe::Mesh& mesh, const ModalBodyD
 }
 
 }  // namespace flexstress::reduction
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_REDUCTION_BODY_STRESS_MODES(X)               \
+  X(9, Result<MatrixXd>, reduction::all_dof_mode_shapes,                   \
+    (const fe::Mesh&, const fe::DofMap&, const reduction::ModalBodyData&)) \
+  X(9, Result<reduction::BodyStressModes>, reduction::body_stress_modes,   \
+    (const fe::Mesh&, const reduction::ModalBodyData&, const std::vector<Vector3d>&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_REDUCTION_BODY_STRESS_MODES)
+}  // namespace flexstress

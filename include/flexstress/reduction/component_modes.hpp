@@ -323,3 +323,15 @@ Result<ComponentModes> craig_chang(const fe::Mesh& mesh,
 }
 
 }  // namespace flexstress::reduction
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_REDUCTION_COMPONENT_MODES(X)                              \
+  X(7, Result<reduction::ComponentModes>, reduction::craig_bampton,                     \
+    (const fe::Mesh&, const std::vector<reduction::InterfaceNode>&,                     \
+     const reduction::ModeSelection&, const fe::MassOptions&, const fe::EigenOptions&)) \
+  X(7, Result<reduction::ComponentModes>, reduction::craig_chang,                       \
+    (const fe::Mesh&, const std::vector<reduction::InterfaceNode>&,                     \
+     const reduction::ModeSelection&, const fe::MassOptions&, const fe::EigenOptions&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_REDUCTION_COMPONENT_MODES)
+}  // namespace flexstress

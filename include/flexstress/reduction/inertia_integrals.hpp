@@ -247,3 +247,11 @@ Result<InertiaIntegrals> inertia_integrals(const fe::Mesh& mesh, const fe::DofMa
 }
 
 }  // namespace flexstress::reduction
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_REDUCTION_INERTIA_INTEGRALS(X)               \
+  X(12, Result<reduction::InertiaIntegrals>, reduction::inertia_integrals, \
+    (const fe::Mesh&, const fe::DofMap&, const MatrixXd&, const fe::MassOptions&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_REDUCTION_INERTIA_INTEGRALS)
+}  // namespace flexstress

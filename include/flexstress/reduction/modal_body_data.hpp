@@ -120,3 +120,13 @@ Result<ModalBodyData> reduce(const fe::Mesh& mesh, const ReductionSpec& spec) {
 }
 
 }  // namespace flexstress::reduction
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_REDUCTION_MODAL_BODY_DATA(X)                                \
+  X(12, Result<reduction::ModalBodyData>, reduction::make_modal_body,                     \
+    (const fe::Mesh&, const reduction::ComponentModes&, const reduction::ReductionSpec&)) \
+  X(12, Result<reduction::ModalBodyData>, reduction::reduce,                              \
+    (const fe::Mesh&, const reduction::ReductionSpec&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_REDUCTION_MODAL_BODY_DATA)
+}  // namespace flexstress

@@ -106,3 +106,11 @@ Result<ModalGeometricStiffness> modal_geometric_stiffness(const fe::Mesh& mesh,
 }
 
 }  // namespace flexstress::reduction
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_REDUCTION_MODAL_GEOMETRIC_STIFFNESS(X)                     \
+  X(9, Result<reduction::ModalGeometricStiffness>, reduction::modal_geometric_stiffness, \
+    (const fe::Mesh&, const reduction::ModalBodyData&, const fe::BoundaryConditions&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_REDUCTION_MODAL_GEOMETRIC_STIFFNESS)
+}  // namespace flexstress

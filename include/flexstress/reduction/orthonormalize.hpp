@@ -92,3 +92,11 @@ Result<DeformationModes> orthonormalize(const fe::Mesh& mesh, const ComponentMod
 }
 
 }  // namespace flexstress::reduction
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_REDUCTION_ORTHONORMALIZE(X)              \
+  X(8, Result<reduction::DeformationModes>, reduction::orthonormalize, \
+    (const fe::Mesh&, const reduction::ComponentModes&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_REDUCTION_ORTHONORMALIZE)
+}  // namespace flexstress

@@ -143,3 +143,11 @@ inline Vector3d host_point_position(const reduction::ModalBodyData& host, const 
 }
 
 }  // namespace flexstress::stress
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_STRESS_HOST_POINT(X) \
+  X(10, Result<MatrixXd>, stress::boundary_modes,  \
+    (const reduction::ModalBodyData&, const std::vector<stress::HostPoint>&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_STRESS_HOST_POINT)
+}  // namespace flexstress

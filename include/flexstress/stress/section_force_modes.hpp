@@ -51,3 +51,11 @@ Result<MatrixXd> section_force_modes(const fe::Mesh& host_mesh,
 }
 
 }  // namespace flexstress::stress
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_STRESS_SECTION_FORCE_MODES(X) \
+  X(10, Result<MatrixXd>, stress::section_force_modes,      \
+    (const fe::Mesh&, const reduction::ModalBodyData&, Index, Index))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_STRESS_SECTION_FORCE_MODES)
+}  // namespace flexstress

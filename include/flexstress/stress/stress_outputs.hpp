@@ -146,3 +146,12 @@ Result<MatrixXd> StressOutputs::rows(const SubModel& sub, const MatrixXd& fields
 }
 
 }  // namespace flexstress::stress
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_STRESS_STRESS_OUTPUTS(X)                                  \
+  X(10, Result<MatrixXd>, stress::StressOutputs::rows, (const stress::SubModel&) const) \
+  X(10, Result<MatrixXd>, stress::StressOutputs::rows,                                  \
+    (const stress::SubModel&, const MatrixXd&) const)
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_STRESS_STRESS_OUTPUTS)
+}  // namespace flexstress

@@ -310,3 +310,24 @@ Result<VectorXd> SubModel::stresses_by_resolve(const std::vector<Vector3d>& poin
 }
 
 }  // namespace flexstress::stress
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_STRESS_SUB_MODEL(X)                           \
+  X(10, Result<stress::SubModel>, stress::SubModel::build,                  \
+    (fe::Mesh, const std::vector<stress::SubModelAttachment>&))             \
+  X(10, Result<MatrixXd>, stress::SubModel::stress_influence,               \
+    (const std::vector<Vector3d>&) const)                                   \
+  X(10, Result<MatrixXd>, stress::SubModel::stress_influence,               \
+    (const std::vector<Vector3d>&, const MatrixXd&) const)                  \
+  X(10, Result<MatrixXd>, stress::SubModel::displacement_influence,         \
+    (const std::vector<Vector3d>&) const)                                   \
+  X(10, Result<MatrixXd>, stress::SubModel::displacement_influence,         \
+    (const std::vector<Vector3d>&, const MatrixXd&) const)                  \
+  X(10, MatrixXd, stress::SubModel::inertia_fields, () const)               \
+  X(10, VectorXd, stress::SubModel::solve, (const VectorXd&) const)         \
+  X(10, VectorXd, stress::SubModel::load_response, (const VectorXd&) const) \
+  X(10, Result<VectorXd>, stress::SubModel::stresses_by_resolve,            \
+    (const std::vector<Vector3d>&, const VectorXd&) const)
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_STRESS_SUB_MODEL)
+}  // namespace flexstress

@@ -71,3 +71,11 @@ Result<SubModelInertia<Scalar>> SubModelInertia<Scalar>::build(const SubModel& s
 }
 
 }  // namespace flexstress::stress
+
+// This header's precompute entry points (core/precompute.hpp).
+#define FLEXSTRESS_PRECOMPUTE_STRESS_SUB_MODEL_INERTIA(X)                                \
+  X(10, Result<stress::SubModelInertia<double>>, stress::SubModelInertia<double>::build, \
+    (const stress::SubModel&, const stress::StressOutputs&))
+namespace flexstress {
+FLEXSTRESS_PRECOMPUTE_EXTERN(FLEXSTRESS_PRECOMPUTE_STRESS_SUB_MODEL_INERTIA)
+}  // namespace flexstress

@@ -34,14 +34,22 @@
 #include "flexstress/stress/sub_model.hpp"
 #include "flexstress/stress/sub_model_inertia.hpp"
 
-// X(part, return type, qualified name, parameter list) for each precompute entry point. Parts
-// group what shares Eigen's heavier templates, so that each compiles in about 1 GB (GCC's
-// front end alone needs 0.6 GB for these headers, and up to 0.45 GB more per entry point):
-// FE assembly (1), constraints (2), element matrices (3), eigen solutions (4), stress
-// operators (5), stress fields and output (6), component modes (7), orthonormalization (8),
-// modal geometric stiffness and stress modes (9), sub-models (10), the static solver (11),
-// modal bodies (12).
-#define FLEXSTRESS_PRECOMPUTE_PARTS 12
+// X(group, return type, qualified name, parameter list) for each precompute entry point. Groups
+// gather what shares Eigen's heavier templates: FE assembly (1), constraints (2), element
+// matrices (3), eigen solutions (4), stress operators (5), stress fields and output (6),
+// component modes (7), orthonormalization (8), modal geometric stiffness and stress modes (9),
+// sub-models (10), the static solver (11), modal bodies (12). A part, one unit of
+// FLEXSTRESS_PRECOMPUTE_PARTS, compiles a few groups: GCC's front end needs 0.7 GB for these
+// headers alone and up to 0.6 GB more per group, and groups that share templates cost less
+// together than apart (7 and 8: 36 s against 25 + 26 s), so each part stays under 1.5 GB (GCC
+// 12, -O3: 1.10 to 1.42 GB) in three quarters of the CPU time of one part per group.
+#define FLEXSTRESS_PRECOMPUTE_PARTS 6
+#define FLEXSTRESS_PRECOMPUTE_PART_GROUPS_1 ((1 << 1) | (1 << 4))
+#define FLEXSTRESS_PRECOMPUTE_PART_GROUPS_2 (1 << 2)
+#define FLEXSTRESS_PRECOMPUTE_PART_GROUPS_3 ((1 << 3) | (1 << 5))
+#define FLEXSTRESS_PRECOMPUTE_PART_GROUPS_4 ((1 << 6) | (1 << 9) | (1 << 10) | (1 << 12))
+#define FLEXSTRESS_PRECOMPUTE_PART_GROUPS_5 ((1 << 7) | (1 << 8))
+#define FLEXSTRESS_PRECOMPUTE_PART_GROUPS_6 (1 << 11)
 #define FLEXSTRESS_PRECOMPUTE_INSTANCES(X)                     \
   FLEXSTRESS_PRECOMPUTE_FE_ASSEMBLY(X)                         \
   FLEXSTRESS_PRECOMPUTE_FE_DOF_MAP(X)                          \
@@ -68,68 +76,85 @@
   FLEXSTRESS_PRECOMPUTE_STRESS_SUB_MODEL(X)                    \
   FLEXSTRESS_PRECOMPUTE_STRESS_STRESS_OUTPUTS(X)
 
-// FLEXSTRESS_INSTANTIATE_PRECOMPUTE defined empty instantiates every part; defined as a part
-// number, that part only, with the others declared extern (so it does not instantiate them
-// either where it calls them). Elsewhere the headers declare them extern themselves.
+// FLEXSTRESS_INSTANTIATE_PRECOMPUTE defined empty instantiates every group; defined as a part
+// number, that part's groups only, with the others declared extern (so it does not instantiate
+// them either where it calls them). Elsewhere the headers declare them extern themselves.
 #if defined(FLEXSTRESS_INSTANTIATE_PRECOMPUTE)
-// 0 when the macro is empty (every part), else the part number.
+// 0 when the macro is empty (every group), else the part number.
 #define FLEXSTRESS_PRECOMPUTE_PART (0 + FLEXSTRESS_INSTANTIATE_PRECOMPUTE + 0)
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 1
+#if FLEXSTRESS_PRECOMPUTE_PART == 0
+#define FLEXSTRESS_PRECOMPUTE_GROUPS 0x1ffe
+#elif FLEXSTRESS_PRECOMPUTE_PART == 1
+#define FLEXSTRESS_PRECOMPUTE_GROUPS FLEXSTRESS_PRECOMPUTE_PART_GROUPS_1
+#elif FLEXSTRESS_PRECOMPUTE_PART == 2
+#define FLEXSTRESS_PRECOMPUTE_GROUPS FLEXSTRESS_PRECOMPUTE_PART_GROUPS_2
+#elif FLEXSTRESS_PRECOMPUTE_PART == 3
+#define FLEXSTRESS_PRECOMPUTE_GROUPS FLEXSTRESS_PRECOMPUTE_PART_GROUPS_3
+#elif FLEXSTRESS_PRECOMPUTE_PART == 4
+#define FLEXSTRESS_PRECOMPUTE_GROUPS FLEXSTRESS_PRECOMPUTE_PART_GROUPS_4
+#elif FLEXSTRESS_PRECOMPUTE_PART == 5
+#define FLEXSTRESS_PRECOMPUTE_GROUPS FLEXSTRESS_PRECOMPUTE_PART_GROUPS_5
+#elif FLEXSTRESS_PRECOMPUTE_PART == 6
+#define FLEXSTRESS_PRECOMPUTE_GROUPS FLEXSTRESS_PRECOMPUTE_PART_GROUPS_6
+#else
+#error "FLEXSTRESS_INSTANTIATE_PRECOMPUTE: a part from 1 to FLEXSTRESS_PRECOMPUTE_PARTS, or empty"
+#endif
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 1) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_1 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_1 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 2
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 2) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_2 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_2 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 3
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 3) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_3 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_3 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 4
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 4) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_4 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_4 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 5
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 5) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_5 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_5 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 6
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 6) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_6 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_6 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 7
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 7) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_7 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_7 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 8
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 8) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_8 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_8 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 9
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 9) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_9 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_9 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 10
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 10) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_10 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_10 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 11
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 11) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_11 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_11 extern template
 #endif
-#if FLEXSTRESS_PRECOMPUTE_PART == 0 || FLEXSTRESS_PRECOMPUTE_PART == 12
+#if (FLEXSTRESS_PRECOMPUTE_GROUPS >> 12) & 1
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_12 template
 #else
 #define FLEXSTRESS_PRECOMPUTE_KEYWORD_12 extern template
@@ -140,6 +165,7 @@ FLEXSTRESS_PRECOMPUTE_INSTANCES(FLEXSTRESS_PRECOMPUTE_INSTANCE)
 }  // namespace flexstress
 #undef FLEXSTRESS_PRECOMPUTE_INSTANCE
 #undef FLEXSTRESS_PRECOMPUTE_PART
+#undef FLEXSTRESS_PRECOMPUTE_GROUPS
 #undef FLEXSTRESS_PRECOMPUTE_KEYWORD_1
 #undef FLEXSTRESS_PRECOMPUTE_KEYWORD_2
 #undef FLEXSTRESS_PRECOMPUTE_KEYWORD_3

@@ -1,4 +1,5 @@
-// flexstress::compiled: the precompute (FE kernel, reductions, sub-models), part 1: FE assembly
-// (see flexstress/precompute_instances.hpp: the parts compile in parallel, each in under 1.5 GB).
+// flexstress::compiled: the precompute (FE kernel, reductions, sub-models), part 1: FE assembly and
+// eigen solutions (see flexstress/precompute_instances.hpp: the parts compile in parallel, each in
+// under 1.5 GB).
 #define FLEXSTRESS_INSTANTIATE_PRECOMPUTE 1
 #include <flexstress/precompute_instances.hpp>

@@ -1,5 +1,5 @@
 // flexstress::compiled: the precompute (FE kernel, reductions, sub-models), part 3: element
-// matrices (see flexstress/precompute_instances.hpp: the parts compile in parallel, each in
-// under 1.5 GB).
+// matrices and stress operators (see flexstress/precompute_instances.hpp: the parts compile in
+// parallel, each in under 1.5 GB).
 #define FLEXSTRESS_INSTANTIATE_PRECOMPUTE 3
 #include <flexstress/precompute_instances.hpp>

@@ -17,7 +17,8 @@ namespace test_eigen_solver_spectra {
 using namespace flexstress;
 using namespace flexstress::fe;
 
-TEST_CASE("Spectra shift-invert agrees with subspace iteration on the RHS sub-model") {
+TEST_CASE("Spectra shift-invert agrees with subspace iteration on the RHS sub-model" *
+          doctest::test_suite("long")) {
   auto r = make_rhs_attachment_mesh();  // density 1: 1792 bricks
   REQUIRE(r.ok());
   Mesh& mesh = r->mesh;

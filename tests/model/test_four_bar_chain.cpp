@@ -57,7 +57,8 @@ TEST_CASE("A02 N four-bar (N = 4): 20 s through 20 singular configurations witho
 // the raise its steps converge whole (measured: 5.0 iterations per step, the first crank 2e-6 rad
 // off the exact motion, two orders below the benchmark's 1e-3); without it Newton
 // stalls in pieces of the step and the run stops at 0.674 s.
-TEST_CASE("A02 N four-bar (N = 40) on the defaults: the penalty rises near the singular position") {
+TEST_CASE("A02 N four-bar (N = 40) on the defaults: the penalty rises near the singular position" *
+          doctest::test_suite("long")) {
   const auto chain = four_bar_chain::make_chain(40, 1e-3);
   if (!chain.ok()) FAIL(chain.error().what());
   const auto run = [&](double max_penalty_factor, double& worst) {

@@ -141,7 +141,8 @@ TEST_CASE("modal geometric stiffness of the cantilever modes: Southwell coeffici
         1e-9 * g[static_cast<int>(Case::spin_xx)].norm());
 }
 
-TEST_CASE("spin-up beam: the linear model diverges, geometric stiffening keeps it straight") {
+TEST_CASE("spin-up beam: the linear model diverges, geometric stiffening keeps it straight" *
+          doctest::test_suite("long")) {
   const spin_up::Spec spec0;
   const Run lin = simulate(kLinear, spin_up::Frame::attached, spec0, 30.0, 4e-3);
   const Run gs = simulate(kStiffened, spin_up::Frame::attached, spec0, 30.0, 4e-3);

@@ -39,7 +39,8 @@ Pendulum make_pendulum(double step, double rho) {
 
 }  // namespace
 
-TEST_CASE("runtime model, A01 pendulum: period 2.367842 s and energy over 2000 s") {
+TEST_CASE("runtime model, A01 pendulum: period 2.367842 s and energy over 2000 s" *
+          doctest::test_suite("long")) {
   const double h = 5e-3;
   const Pendulum p = make_pendulum(h, 0.9);
   Data<double> d(p.model);

@@ -45,7 +45,7 @@ Pendulum make_pendulum(const Vector3d& start = Vector3d(1, 0, 0), bool with_brak
 
 }  // namespace
 
-TEST_CASE("A01 pendulum: period 2.367842 s and energy over 2000 s") {
+TEST_CASE("A01 pendulum: period 2.367842 s and energy over 2000 s" * doctest::test_suite("long")) {
   const Pendulum p = make_pendulum();
   Data<double> d(p.model);
   d.settings.step = 5e-3;

@@ -497,7 +497,8 @@ TEST_CASE("stress suite: the 40-bar chain (IFToMM A02) through its singular conf
 // two corrections, lower), from static equilibrium. Compared: the boom tip's deflection from the
 // boom's tangent at its hinge A (in the plane). (The hot-spot stress would need the welded
 // detail's sub-model, examples/crane/crane_detail.cpp, which this test target does not compile.)
-TEST_CASE("stress suite: the crane's work cycle, boom tip deflection") {
+TEST_CASE("stress suite: the crane's work cycle, boom tip deflection" *
+          doctest::test_suite("long")) {
   const crane::CraneSpec spec;
   const auto boom = crane::make_boom(spec, 10);
   REQUIRE_MESSAGE(boom.ok(), boom.error().what());

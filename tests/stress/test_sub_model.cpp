@@ -500,7 +500,8 @@ TEST_CASE("section-force modes of a reduced cantilever give the section's shear 
   CHECK(not_its_node.error().message.find("is not a node of beam element 0") != std::string::npos);
 }
 
-TEST_CASE("the hot-spot stress is insensitive to the sub-model mesh (three densities)") {
+TEST_CASE("the hot-spot stress is insensitive to the sub-model mesh (three densities)" *
+          doctest::test_suite("long")) {
   // The structural hot-spot method is built to be mesh-insensitive for meshes within its rules
   // (IIW type a: elements <= 0.4 t at the toe; Niemi, Fricke & Maddox, designer's guide), unlike
   // the notch stress at the toe itself, which grows without bound as the mesh is refined. The

@@ -13,12 +13,12 @@
 
 #define FLEXSTRESS_PRECOMPUTE template <class = void>
 
-// Each header lists its precompute entry points as X(part, return type, qualified name,
+// Each header lists its precompute entry points as X(group, return type, qualified name,
 // parameters) (FLEXSTRESS_PRECOMPUTE_FE_ASSEMBLY, ...; precompute_instances.hpp instantiates
-// them, grouped in parts) and declares them extern where their instantiations are compiled
-// elsewhere: in flexstress::compiled (FLEXSTRESS_COMPILED, which linking it defines) or in a
-// project's own unit (FLEXSTRESS_EXTERN_PRECOMPUTE). A unit that declares them extern only
-// parses them. The unit that compiles them defines FLEXSTRESS_INSTANTIATE_PRECOMPUTE.
+// them, in parts of a few groups each) and declares them extern where their instantiations are
+// compiled elsewhere: in flexstress::compiled (FLEXSTRESS_COMPILED, which linking it defines) or in
+// a project's own unit (FLEXSTRESS_EXTERN_PRECOMPUTE). A unit that declares them extern only parses
+// them. The unit that compiles them defines FLEXSTRESS_INSTANTIATE_PRECOMPUTE.
 #if (defined(FLEXSTRESS_COMPILED) || defined(FLEXSTRESS_EXTERN_PRECOMPUTE)) && \
     !defined(FLEXSTRESS_INSTANTIATE_PRECOMPUTE)
 #define FLEXSTRESS_PRECOMPUTE_EXTERN_ENTRY(P, R, F, A) extern template R F<void> A;

@@ -1,5 +1,0 @@
-// flexstress::compiled: the precompute (FE kernel, reductions, sub-models), part 9: modal geometric
-// stiffness and stress modes (see flexstress/precompute_instances.hpp: the parts compile in
-// parallel, each in under 1.5 GB).
-#define FLEXSTRESS_INSTANTIATE_PRECOMPUTE 9
-#include <flexstress/precompute_instances.hpp>

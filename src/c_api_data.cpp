@@ -329,6 +329,11 @@ double fs_meter_damage(fs_data* d, int meter) {
   return fsx::meter_damage(d->data, fsx::MeterId{meter});
 }
 
+long long fs_meter_refused_samples(const fs_data* d, int meter) {
+  if (!d || !in_range(meter, d->model->meters().size())) return -1;
+  return static_cast<long long>(fsx::meter_refused_samples(d->data, fsx::MeterId{meter}));
+}
+
 int fs_linearized_frequencies(fs_data* d, double* hz, int capacity, int* count) {
   if (count) *count = 0;
   return guarded("fs_linearized_frequencies", [&] {

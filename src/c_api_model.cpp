@@ -208,7 +208,7 @@ int fs_builder_add_stress_outputs(fs_model_builder* b, const char* name, int bod
     }
     using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     const Eigen::MatrixXd f = Eigen::Map<const RowMajor>(rows, num_outputs, num_modes);
-    return b->builder.add_stress_outputs(name, fsx::BodyId{body}, f).index;
+    return b->builder.add_stress_outputs(name, fsx::BodyId{body}, f).first.index;
   });
 }
 

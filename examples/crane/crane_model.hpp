@@ -132,12 +132,12 @@ struct BasicCrane {
   JointId joint_a, joint_b;    ///< the boom's hinge on the support and the rod's joint on it
   JointId stroke_driver;       ///< the prescribed stroke (invalid with the hydraulic drive)
   ForceId hydraulic_cylinder;  ///< the valve-driven cylinder (hydraulic drive only)
-  OutputId outputs;            ///< the first of the detail's outputs, in Detail's order
+  OutputRange outputs;         ///< the detail's outputs, in Detail's order
   MeterId hot_spot_meter;
   /// The cylinder length at t = 0 (the stroke is measured from it).
   double initial_length = 0;
 
-  OutputId output(Index row) const { return OutputId{outputs.index + static_cast<int>(row)}; }
+  OutputId output(Index row) const { return outputs[static_cast<int>(row)]; }
 };
 using Crane = BasicCrane<double>;
 

@@ -71,16 +71,16 @@ Result<Detail> make_detail(const CraneSpec& spec, const Boom& boom, int modes);
 /// The detail's outputs on the boom, its hot spot's damage meter and (optionally) its inertia.
 template <class Scalar>
 Status add_detail_outputs(ModelBuilder<Scalar>& b, const Detail& d, BodyId boom, bool with_inertia,
-                          OutputId& first, MeterId& meter) {
-  first = b.add_stress_outputs("detail D", boom, d.fused, d.names);
+                          OutputRange& outputs, MeterId& meter) {
+  outputs = b.add_stress_outputs("detail D", boom, d.fused, d.names);
   if (with_inertia) {
     auto inertia = stress::SubModelInertia<>::build(*d.sub, d.outputs);
     if (!inertia) return inertia.error();
-    b.add_output_inertia(first, inertia->rows());
+    b.add_output_inertia(outputs, inertia->rows());
   }
   auto empty = make_damage_meter<Scalar>();
   if (!empty) return empty.error();
-  meter = b.add_damage_meter("hot spot (MPa)", OutputId{first.index + int(d.hot_spot)}, *empty,
+  meter = b.add_damage_meter("hot spot (MPa)", outputs[int(d.hot_spot)], *empty,
                              Scalar(MeterSpec().scale));
   return Status::success();
 }
@@ -121,10 +121,10 @@ Result<BasicCrane<Scalar>> make_crane(const CraneSpec& spec, const CraneOptions&
   const JointId driver =
       driven.add_driver("stroke", JointKind::prismatic_driver, parts.cylinder_origin,
                         parts.rod_origin, MotionLaw<Scalar>::from_table(std::move(*law)));
-  OutputId first;
+  OutputRange outputs;
   MeterId meter;
   if (Status st = assembly::add_detail_outputs(driven, cr.detail, parts.boom, options.with_inertia,
-                                               first, meter);
+                                               outputs, meter);
       !st)
     return st.error();
   auto driven_model = driven.finalize();
@@ -136,7 +136,7 @@ Result<BasicCrane<Scalar>> make_crane(const CraneSpec& spec, const CraneOptions&
   cr.rod = parts.rod;
   cr.joint_a = parts.a;
   cr.joint_b = parts.b;
-  cr.outputs = first;
+  cr.outputs = outputs;
   cr.hot_spot_meter = meter;
   if (!options.hydraulic) {
     cr.model = std::move(*driven_model);
@@ -199,7 +199,7 @@ Result<BasicCrane<Scalar>> make_crane(const CraneSpec& spec, const CraneOptions&
       "cylinder", same.cylinder_origin, same.rod_origin, hp,
       MotionLaw<Scalar>::from_table(std::move(*command)), Scalar(p1), Scalar(p2));
   if (Status st = assembly::add_detail_outputs(valved, cr.detail, same.boom, options.with_inertia,
-                                               first, meter);
+                                               outputs, meter);
       !st)
     return st.error();
   auto valved_model = valved.finalize();

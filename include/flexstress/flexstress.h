@@ -300,6 +300,9 @@ int fs_evaluate_outputs(fs_data* d);
 double fs_output_value(const fs_data* d, int output); /* NaN for a bad handle */
 /* Damage so far of a meter, its open cycles closed as a repeating history. NaN if bad. */
 double fs_meter_damage(fs_data* d, int meter);
+/* Samples a meter refused so far (outside its class window, or not finite), which its damage
+ * leaves out: above zero, the window is too narrow for the run. -1 if bad. */
+long long fs_meter_refused_samples(const fs_data* d, int meter);
 
 /* Natural frequencies (Hz, ascending) of small vibrations about the data's state, which must be
  * an equilibrium (fs_solve_static_equilibrium). Writes min(capacity, count) of them to hz and

@@ -228,6 +228,8 @@ static void check_outputs_and_checkpoints(const char* modal_file, const referenc
   CHECK(fabs(p[0]) > 0.0);                 /* the push bent the beam */
   CHECK(fs_meter_damage(d, meter) >= 0.0); /* finite and not negative */
   CHECK(isnan(fs_output_value(d, 7)) && isnan(fs_meter_damage(d, 3)));
+  CHECK(fs_meter_refused_samples(d, meter) == 0); /* p_0 stayed within -1..1 */
+  CHECK(fs_meter_refused_samples(d, 3) == -1 && fs_meter_refused_samples(NULL, 0) == -1);
   /* Restored at 0.2 s and continued: the same state as the run that never stopped. */
   CHECK(fs_checkpoint_restore(resumed, bytes, size) == FS_OK);
   CHECK(fabs(fs_time(resumed) - 0.2) < 1e-12);

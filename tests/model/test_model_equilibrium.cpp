@@ -69,8 +69,8 @@ TEST_CASE("runtime model: static equilibrium of a clamped cantilever matches the
   auto beam = testing::make_beam_body(kLength, kSection, 24, {0.0}, 16);
   ModelBuilder<double> b;
   const BodyId body = b.add_flexible_body("cantilever", beam.data, 16);
-  b.add_joint("clamp", JointKind::fixed, b.add_marker("wall", b.ground(), -1),
-              b.add_marker("root", body, beam.interface_nodes[0]));
+  const JointId clamp = b.add_joint("clamp", JointKind::fixed, b.add_marker("wall", b.ground(), -1),
+                                    b.add_marker("root", body, beam.interface_nodes[0]));
   const MarkerId tip = b.add_marker("tip", body, beam.line.nodes.back());
   b.set_gravity(Vector3d(0, -9.81, 0));
   auto m = b.finalize();
@@ -99,7 +99,7 @@ TEST_CASE("runtime model: static equilibrium of a clamped cantilever matches the
   CHECK(tip_fe == doctest::Approx(tip_theory).epsilon(5e-3));
   // The clamp carries the weight: its reaction on the beam is m g upwards.
   const double weight = 7850 * kSection.area * kLength * 9.81;
-  CHECK(joint_reaction(*m, d, JointId{0}).force.y() == doctest::Approx(weight).epsilon(1e-6));
+  CHECK(joint_reaction(*m, d, clamp).force.y() == doctest::Approx(weight).epsilon(1e-6));
 }
 
 TEST_CASE("runtime model: static equilibrium of a platform that only its suspension spring holds") {

@@ -5,6 +5,7 @@
 // tests/model/test_flexible_models.cpp. That a step allocates nothing, with either kernel, is
 // tests/model/test_no_alloc.cpp's.
 #include <cmath>
+#include <vector>
 
 #include <doctest/doctest.h>
 
@@ -66,6 +67,28 @@ Eigen::VectorXd swing(const testing::BeamBody& beam, int modes, bool bounded, in
   return out;
 }
 
+// The beam of hinged_beam() with `modes` modes on its hinge under gravity, added to b.
+BodyId add_hinged(ModelBuilder<double>& b, const testing::BeamBody& beam, int modes) {
+  const BodyId body = b.add_flexible_body("beam", beam.data, modes);
+  b.add_joint("hinge", JointKind::revolute, b.add_marker("pivot", b.ground(), -1),
+              b.add_marker("root", body, beam.interface_nodes[0]));
+  b.set_gravity(Vector3d(0, -9.81, 0));
+  return body;
+}
+
+// An empty damage meter: IIW FAT 100 on 128 classes of -window .. window.
+DamageMeter<double> fat100_meter(double window) {
+  auto grid = fatigue::ClassGrid<double>::create(-window, window, 128);
+  REQUIRE(grid.ok());
+  auto curve = fatigue::iiw_normal_curve(100.0, fatigue::IiwBeyondKnee::haibach);
+  REQUIRE(curve.ok());
+  auto damage = fatigue::DamageModel<double>::create(*curve);
+  REQUIRE(damage.ok());
+  auto meter = DamageMeter<double>::create(*grid, 0, *damage);
+  REQUIRE(meter.ok());
+  return *meter;
+}
+
 double relative_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return (a - b).lpNorm<Eigen::Infinity>() / std::max(1e-30, b.lpNorm<Eigen::Infinity>());
 }
@@ -98,6 +121,80 @@ TEST_CASE("runtime model: a mode count the data lacks is an error naming the bod
   auto m = b.finalize();
   REQUIRE_FALSE(m.ok());
   CHECK(m.error().what().find("body 'boom'") != std::string::npos);
+}
+
+TEST_CASE("runtime model: a set's outputs by index are its rows times the modal coordinates") {
+  const auto beam = hinged_beam(4);
+  ModelBuilder<double> b;
+  const BodyId body = add_hinged(b, beam, 4);
+  Eigen::MatrixXd rows(3, 4);
+  rows << 1, 2, 3, 4, -5, 6, -7, 8, 0.5, 0, 0, -0.25;
+  const OutputRange set = b.add_stress_outputs("rows", body, rows);
+  const OutputRange other = b.add_stress_outputs("other", body, rows.topRows(1));
+  CHECK(set.size() == 3);
+  CHECK_FALSE(set[3].valid());
+  CHECK_FALSE(set[-1].valid());
+  CHECK(other[0] != set[0]);
+  auto m = b.finalize();
+  REQUIRE_MESSAGE(m.ok(), m.error().what());
+  Data<double> d(*m);
+  REQUIRE(initialize(*m, d).ok());
+  for (int i = 0; i < 50; ++i) REQUIRE(step(*m, d) == StepStatus::ok);
+  REQUIRE(evaluate_outputs(*m, d) == StepStatus::ok);
+  const Eigen::VectorXd p = modal_coordinates(*m, d, body);
+  CHECK(p.norm() > 0);  // the beam bends under its weight
+  for (int k = 0; k < set.size(); ++k)
+    CHECK(output_value(d, set[k]) == doctest::Approx(rows.row(k).dot(p)).epsilon(1e-14));
+  CHECK(output_value(d, other[0]) == doctest::Approx(rows.row(0).dot(p)).epsilon(1e-14));
+
+  // A meter on a row the set does not have is refused, naming the meter.
+  ModelBuilder<double> bad;
+  const BodyId bad_body = bad.add_flexible_body("beam", beam.data, 4);
+  const OutputRange bad_set = bad.add_stress_outputs("rows", bad_body, rows);
+  bad.add_damage_meter("gauge", bad_set[3], fat100_meter(1.0));
+  auto refused = bad.finalize();
+  REQUIRE_FALSE(refused.ok());
+  CHECK(refused.error().what().find("meter 'gauge'") != std::string::npos);
+}
+
+TEST_CASE("runtime model: a meter counts the samples outside its window; a checkpoint keeps it") {
+  const auto beam = hinged_beam(4);
+  ModelBuilder<double> b;
+  const BodyId body = add_hinged(b, beam, 4);
+  const OutputRange modal_sum =
+      b.add_stress_outputs("sum of modes", body, Eigen::MatrixXd::Ones(1, 4));
+  constexpr double kNarrow = 1e-12;
+  const MeterId wide = b.add_damage_meter("wide", modal_sum[0], fat100_meter(1.0));
+  const MeterId narrow = b.add_damage_meter("narrow", modal_sum[0], fat100_meter(kNarrow));
+  auto m = b.finalize();
+  REQUIRE_MESSAGE(m.ok(), m.error().what());
+  Data<double> d(*m), resumed(*m);
+  REQUIRE(initialize(*m, d).ok());
+  std::vector<unsigned char> saved;
+  long outside = 0, refused_steps = 0;
+  for (int i = 0; i < 60; ++i) {
+    REQUIRE(step(*m, d) == StepStatus::ok);
+    const StepStatus s = evaluate_outputs(*m, d);
+    // The grid's window is the class edges: a sample beyond +-kNarrow is outside it.
+    outside += std::abs(output_value(d, modal_sum[0])) > kNarrow ? 1 : 0;
+    refused_steps += s == StepStatus::capacity_exceeded ? 1 : 0;
+    if (i == 29) {
+      auto bytes = save_checkpoint(*m, d);
+      REQUIRE(bytes.ok());
+      saved = std::move(*bytes);
+    }
+  }
+  CHECK(outside > 30);  // the beam bends under its weight within the first steps
+  CHECK(meter_refused_samples(d, narrow) == outside);
+  CHECK(refused_steps == outside);  // evaluate_outputs said so at each of them
+  CHECK(meter_refused_samples(d, wide) == 0);
+  REQUIRE(restore_checkpoint(*m, resumed, saved.data(), saved.size(), "at step 30").ok());
+  for (int i = 30; i < 60; ++i) {
+    REQUIRE(step(*m, resumed) == StepStatus::ok);
+    evaluate_outputs(*m, resumed);
+  }
+  CHECK(meter_refused_samples(resumed, narrow) == meter_refused_samples(d, narrow));
+  CHECK(meter_damage(resumed, wide) == meter_damage(d, wide));
 }
 
 }  // namespace test_model_flexible

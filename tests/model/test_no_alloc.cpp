@@ -58,6 +58,8 @@ struct Hinged {
   Model<double> model;
   BodyId body;
   JointId hinge;
+  OutputRange outputs;  ///< with fused rows
+  MeterId meter;        ///< on the first output
 };
 
 // The host on a revolute joint about z under gravity; optionally geometrically stiffened, with
@@ -82,7 +84,7 @@ Hinged make_hinged(const testing::BeamBody& host, int modes, bool stiffened = fa
                      });
   }
   if (fused_rows != nullptr) {
-    const OutputId first = b.add_stress_outputs("detail", h.body, *fused_rows);
+    h.outputs = b.add_stress_outputs("detail", h.body, *fused_rows);
     // IIW FAT 100 on 128 classes of -400..400 MPa (as the crane's meter).
     auto curve = fatigue::iiw_normal_curve(100.0, fatigue::IiwBeyondKnee::haibach);
     REQUIRE(curve.ok());
@@ -92,7 +94,7 @@ Hinged make_hinged(const testing::BeamBody& host, int modes, bool stiffened = fa
     REQUIRE(grid.ok());
     auto meter = DamageMeter<double>::create(*grid, 0, *damage);
     REQUIRE(meter.ok());
-    b.add_damage_meter("hot spot", first, *meter, 1e-6);
+    h.meter = b.add_damage_meter("hot spot", h.outputs[0], *meter, 1e-6);
   }
   auto m = b.finalize();
   REQUIRE_MESSAGE(m.ok(), m.error().what());
@@ -173,7 +175,7 @@ TEST_CASE("a flexible model's steps, outputs and the stress recovery allocate no
       const Vec<double, N> p = modal_coordinates(h.model, s, h.body);
       fused->evaluate(p, y);
       fused->evaluate_by_influence(p, y2);
-      checksum += y(0) + y2(0) + fused->evaluate(0, p) + output_value(s, OutputId{0});
+      checksum += y(0) + y2(0) + fused->evaluate(0, p) + output_value(s, h.outputs[0]);
       field_modes->evaluate(p, field);
       checksum += field(0) + field_modes->max_von_mises(p);
       checksum += stress::principal_near_direction<double>(fused->tensor(tensor, p),
@@ -181,7 +183,7 @@ TEST_CASE("a flexible model's steps, outputs and the stress recovery allocate no
       // Read-outs by handle.
       checksum += joint_reaction(h.model, s, h.hinge).force.norm() +
                   body_position(h.model, s, h.body).norm() + energy(h.model, s).total() +
-                  momentum(h.model, s).angular.norm() + meter_damage(s, MeterId{0});
+                  momentum(h.model, s).angular.norm() + meter_damage(s, h.meter);
     }
     counted = scope.count();
   }

@@ -4,7 +4,7 @@
 // bit for bit; a restore into a model that differs fails and says what differs (the first body,
 // joint, force, input or output set whose kind, size or parameters are not the checkpoint's).
 //
-// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 7, signature 0): the
+// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 8, signature 0): the
 // model description (entries of a label, a summary and a hash of the part's parameters), then
 // the Data. A callback law cannot be saved: the checkpoint records that there was one, and the
 // restoring Data must hold a callback law in that place (its own function is kept).
@@ -38,7 +38,7 @@ struct ModelPart {
 
 namespace checkpoint_model_detail {
 
-inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 7, "model checkpoint"};
+inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 8, "model checkpoint"};
 
 template <class T>
 void put_raw(binary::Writer& w, const T& x) {
@@ -226,6 +226,7 @@ Result<std::vector<unsigned char>> save_checkpoint(const Model<Scalar>& m, const
     w.put(static_cast<std::uint64_t>(bytes->size()));
     w.buffer.insert(w.buffer.end(), bytes->begin(), bytes->end());
   }
+  for (std::int64_t refused : d.meter_refused) w.put(refused);
   // Integrator: settings, history, statistics.
   put_raw(w, d.settings);
   put_raw(w, d.statistics);
@@ -348,6 +349,7 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
         !s.ok())
       return s;
   }
+  for (auto& refused : next.meter_refused) ok = ok && r.get(refused) && refused >= 0;
   ok = ok && get_raw(r, next.settings) && get_raw(r, next.statistics);
   auto& in = next.integrator;
   std::uint8_t flags[4] = {};

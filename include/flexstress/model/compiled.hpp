@@ -86,6 +86,7 @@
   D Eigen::Matrix<S, 12, 1> body_inertia_coordinates<S>(const Model<S>&, const Data<S>&, int);    \
   D StepStatus evaluate_outputs<S>(const Model<S>&, Data<S>&, bool);                              \
   D S meter_damage<S>(Data<S>&, MeterId, fatigue::CycleClosure);                                  \
+  D std::int64_t meter_refused_samples<S>(const Data<S>&, MeterId);                               \
   D std::vector<ModelPart> describe_model<S>(const Model<S>&);                                    \
   D Result<std::vector<unsigned char>> save_checkpoint<S>(const Model<S>&, const Data<S>&);       \
   D Status restore_checkpoint<S>(const Model<S>&, Data<S>&, const unsigned char*, std::size_t,    \

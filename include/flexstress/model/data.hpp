@@ -48,6 +48,8 @@ struct Data {
   // ---- outputs (evaluate_outputs) ---------------------------------------------------------
   VectorX outputs;                          ///< by OutputId
   std::vector<DamageMeter<Scalar>> meters;  ///< by MeterId
+  /// Samples each meter refused (outside its class window, or not finite), by MeterId.
+  std::vector<std::int64_t> meter_refused;
 
   // ---- workspace (what an evaluation writes) -----------------------------------------------
   /// The ground frame at t (prescribed motion): origin, its velocity and acceleration, rotation,
@@ -149,6 +151,7 @@ struct Data {
     outputs.setZero(model.num_outputs());
     meters.clear();
     for (const auto& m : model.meters()) meters.push_back(m.prototype);
+    meter_refused.assign(model.meters().size(), 0);
     ground = Ground();
     rotation.assign(model.bodies().size(), Mat3<Scalar>::Identity());
     markers.assign(static_cast<std::size_t>(model.num_marker_slots()), MarkerState<Scalar>());

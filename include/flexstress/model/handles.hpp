@@ -37,4 +37,18 @@ using OutputId = Handle<OutputTag>;
 /// A damage meter counting one output.
 using MeterId = Handle<MeterTag>;
 
+/// The outputs of one set (ModelBuilder::add_stress_outputs), row k of its matrix being
+/// output k. Converts to its first output, which is what functions that take a set's
+/// OutputId (add_output_inertia) expect.
+struct OutputRange {
+  OutputId first;
+  int count = 0;
+  /// Row k's output; outside 0 .. count - 1 an invalid handle, which the builder refuses.
+  constexpr OutputId operator[](int k) const {
+    return k >= 0 && k < count ? OutputId{first.index + k} : OutputId{};
+  }
+  constexpr int size() const { return count; }
+  constexpr operator OutputId() const { return first; }  // NOLINT: a set is its first output
+};
+
 }  // namespace flexstress

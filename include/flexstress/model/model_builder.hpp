@@ -223,10 +223,10 @@ class ModelBuilder {
   }
 
   /// Stress outputs of a flexible body: y = F p with F (outputs x the body's modes, e.g.
-  /// stress::FusedStress rows), one name per row. Returns the first output; the others follow.
-  OutputId add_stress_outputs(const std::string& name, BodyId body,
-                              const Eigen::MatrixXd& fused_rows,
-                              const std::vector<std::string>& names = {}) {
+  /// stress::FusedStress rows), one name per row. Returns the set's outputs: [k] is row k's.
+  OutputRange add_stress_outputs(const std::string& name, BodyId body,
+                                 const Eigen::MatrixXd& fused_rows,
+                                 const std::vector<std::string>& names = {}) {
     typename ModelType::OutputSet set;
     set.name = name;
     set.body = body.index;
@@ -241,8 +241,10 @@ class ModelBuilder {
       fail(ErrorCode::invalid_argument, "outputs '", name, "': rows not finite");
     set.first = num_outputs_;
     num_outputs_ += static_cast<int>(fused_rows.rows());
+    const int first = set.first;
+    const int count = static_cast<int>(set.rows.rows());
     output_sets_.push_back(std::move(set));
-    return OutputId{output_sets_.back().first};
+    return OutputRange{OutputId{first}, count};
   }
   /// Adds the sub-model's own weight and inertia to the outputs of the set that `first`
   /// starts: y += G g (stress::SubModelInertia rows, outputs x 12).
@@ -261,7 +263,10 @@ class ModelBuilder {
   /// A damage meter fed with scale * output after each step (evaluate_outputs).
   MeterId add_damage_meter(const std::string& name, OutputId output,
                            const DamageMeter<Scalar>& empty_meter, Scalar scale = Scalar(1)) {
-    if (output.index < 0 || output.index >= num_outputs_)
+    if (!output.valid())
+      fail(ErrorCode::invalid_argument, "meter '", name,
+           "': invalid output handle (a row outside its output set?)");
+    else if (output.index >= num_outputs_)
       fail(ErrorCode::invalid_argument, "meter '", name, "': no output ", output.index);
     meters_.push_back({name, output.index, scale, empty_meter});
     return MeterId{static_cast<int>(meters_.size()) - 1};

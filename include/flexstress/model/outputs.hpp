@@ -3,6 +3,8 @@
 // and feeds each meter its output. Never allocates.
 #pragma once
 
+#include <cstdint>
+
 #include <Eigen/Core>
 
 #include "flexstress/core/status.hpp"
@@ -37,7 +39,8 @@ Eigen::Matrix<Scalar, 12, 1> body_inertia_coordinates(const Model<Scalar>& model
 
 /// Evaluates every output at d's state and (feed_meters) pushes each meter's output. Returns ok,
 /// or the first meter's refusal (invalid_input for a non-finite value, capacity_exceeded
-/// outside its class window), having evaluated all outputs.
+/// outside its class window), having evaluated all outputs and fed every meter; each meter
+/// counts the samples it refused (meter_refused_samples).
 template <class Scalar>
 StepStatus evaluate_outputs(const Model<Scalar>& model, Data<Scalar>& d, bool feed_meters = true) {
   for (const auto& set : model.output_sets()) {
@@ -52,7 +55,9 @@ StepStatus evaluate_outputs(const Model<Scalar>& model, Data<Scalar>& d, bool fe
   for (std::size_t k = 0; k < model.meters().size(); ++k) {
     const auto& m = model.meters()[k];
     const StepStatus s = d.meters[k].push(m.scale * d.outputs(m.output));
-    if (s != StepStatus::ok && status == StepStatus::ok) status = s;
+    if (s == StepStatus::ok) continue;
+    ++d.meter_refused[k];
+    if (status == StepStatus::ok) status = s;
   }
   return status;
 }
@@ -68,6 +73,13 @@ template <class Scalar>
 Scalar meter_damage(Data<Scalar>& d, MeterId id,
                     fatigue::CycleClosure closure = fatigue::CycleClosure::repeating) {
   return d.meters[static_cast<std::size_t>(id.index)].damage(closure);
+}
+
+/// How many samples a meter refused so far (outside its class window, or not finite): its
+/// damage leaves them out, so a count above zero means a window too narrow for the run.
+template <class Scalar>
+std::int64_t meter_refused_samples(const Data<Scalar>& d, MeterId id) {
+  return d.meter_refused[static_cast<std::size_t>(id.index)];
 }
 
 }  // namespace flexstress

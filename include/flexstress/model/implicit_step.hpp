@@ -70,7 +70,8 @@ Status set_settings(const Model<Scalar>&, Data<Scalar>& d, const ImplicitSetting
   return Status::success();
 }
 
-/// Consistent initial conditions at d.t: positions onto Phi = 0 (least mass-weighted change),
+/// Consistent initial conditions at d.t: positions onto Phi = 0 (least change weighted by mass
+/// and modal stiffness: a flexible body is turned, not bent, to meet a joint or driver),
 /// velocities onto B v + Phi_t = 0, then accelerations and multipliers from the equations of
 /// motion. Fails, naming the joint or body, if the joints cannot be assembled, a coordinate is
 /// not finite or an input law reads an input never set.
@@ -99,8 +100,15 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
   update_markers(model, d);
   update_constraints(model, d);
   Scalar violation = max_abs(d.phi);
-  // Damped Newton projection: (M + alpha B^T B) dx = -alpha B^T Phi, refactorized at every
-  // iterate, with step halving when the violation grows.
+  // Damped Newton projection: (W + alpha B^T B) dx = -alpha B^T Phi, refactorized at every
+  // iterate, with step halving when the violation grows. The rigid coordinates move first
+  // (flexible bodies turned, not bent, to meet a joint or a driver's law); where they alone
+  // stop halving the violation (a loop that only deformation closes), the modal coordinates
+  // join, weighted by their stiffness (detail::ProjectionMetric).
+  using detail::ProjectionMetric;
+  const bool flexible = std::any_of(model.bodies().begin(), model.bodies().end(),
+                                    [](const auto& b) { return b.nv > 6; });
+  ProjectionMetric metric = flexible ? ProjectionMetric::rigid : ProjectionMetric::mass;
   for (int it = 0;; ++it) {
     if (violation <= tol) break;  // NaN falls through to the error
     if (it >= max_iterations || !std::isfinite(static_cast<double>(violation))) {
@@ -115,10 +123,11 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
                         static_cast<double>(violation), " in ",
                         joint >= 0 ? model.describe_joint(joint) : std::string("no joint"), ")"));
     }
-    detail::factorize_projection(model, d);
+    detail::factorize_projection(model, d, metric);
     in.e = -in.penalty * d.phi;
     in.dx.setZero();
     add_jacobian_transpose_times(model, d, in.e, in.dx);
+    if (metric == ProjectionMetric::rigid) detail::clear_modal(model, in.dx);
     in.cholesky.solve_in_place(in.dx);
     if (!in.dx.allFinite()) {
       violation = std::numeric_limits<Scalar>::quiet_NaN();
@@ -132,6 +141,8 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
       update_constraints(model, d);
       const Scalar trial = max_abs(d.phi);
       if (trial < violation || halving == 30) {
+        if (metric == ProjectionMetric::rigid && !(trial < Scalar(0.5) * violation))
+          metric = ProjectionMetric::elastic;
         violation = trial;
         break;
       }

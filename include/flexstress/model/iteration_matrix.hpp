@@ -61,19 +61,48 @@ void factorize_iteration(const Model<Scalar>& model, Data<Scalar>& d) {
   ++d.statistics.last_factorizations;
 }
 
-/// The metric of projections outside a step: M + alpha B^T B (evaluates at the state).
+/// What a projection outside a step may change, and at what cost.
+enum class ProjectionMetric {
+  mass,     ///< W = M: least kinetic energy change (velocities, as an impulse would)
+  rigid,    ///< the rigid coordinates only, W = M on them (modal coordinates kept)
+  elastic,  ///< W = M + K / omega_0^2, omega_0 = 2 pi x 1 Hz: a mode of frequency f costs
+            ///< (f / 1 Hz)^2 times a rigid motion of the same modal mass
+};
+
+/// The metric of projections outside a step: W + alpha B^T B (evaluates at the state). With
+/// ProjectionMetric::rigid the modal rows and columns are identity rows and columns, so a
+/// solve leaves the modal entries of its right-hand side as they are (clear_modal them).
 template <class Scalar>
-void factorize_projection(const Model<Scalar>& model, Data<Scalar>& d) {
+void factorize_projection(const Model<Scalar>& model, Data<Scalar>& d,
+                          ProjectionMetric metric = ProjectionMetric::mass) {
   auto& in = d.integrator;
   evaluate(model, d);
   in.iteration.setZero();
   set_mass_blocks(model, d, in.iteration);
+  if (metric == ProjectionMetric::elastic) {
+    const Scalar omega_0 = Scalar(2 * 3.14159265358979323846);
+    add_modal_stiffness_damping(model, d, in.iteration, Scalar(1) / (omega_0 * omega_0), Scalar(0));
+  }
   const Scalar m_ref = max_abs(in.iteration.diagonal());
   in.penalty = d.settings.penalty_factor * m_ref;
   add_constraint_gram(model, d, in.penalty, in.iteration);
+  if (metric == ProjectionMetric::rigid)
+    for (const auto& b : model.bodies())
+      for (int k = b.v_offset + 6; k < b.v_offset + b.nv; ++k) {
+        in.iteration.row(k).setZero();
+        in.iteration.col(k).setZero();
+        in.iteration(k, k) = Scalar(1);
+      }
   in.cholesky.compute(in.iteration);
   record_rotations(model, d);
   in.have_factorization = false;  // the step needs its own matrix
+}
+
+/// Zeroes the modal coordinates' entries of a velocity-space vector.
+template <class Scalar, class V>
+void clear_modal(const Model<Scalar>& model, V& x) {
+  for (const auto& b : model.bodies())
+    if (b.nv > 6) x.segment(b.v_offset + 6, b.nv - 6).setZero();
 }
 
 /// x <- S^-1 x, turned with the bodies unless S was factorized at this iterate (`fresh`):

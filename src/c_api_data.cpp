@@ -267,6 +267,19 @@ int fs_joint_reaction(const fs_data* d, int joint, double force[3], double momen
   });
 }
 
+int fs_driver_effort(const fs_data* d, int joint, double* effort) {
+  return guarded("fs_driver_effort", [&] {
+    if (!d || !effort) return null_argument("fs_driver_effort");
+    if (!in_range(joint, d->model->joints().size()))
+      return bad_handle("fs_driver_effort", "joint", joint);
+    if (!fsx::is_driver(d->model->joints()[static_cast<std::size_t>(joint)].kind))
+      return fail(FS_ERROR_INVALID_ARGUMENT,
+                  "fs_driver_effort: " + d->model->describe_joint(joint) + " is not a driver");
+    *effort = fsx::driver_effort(*d->model, d->data, fsx::JointId{joint});
+    return int(FS_OK);
+  });
+}
+
 int fs_energy_compute(fs_data* d, fs_energy* out) {
   return guarded("fs_energy_compute", [&] {
     if (!d || !out) return null_argument("fs_energy_compute");
@@ -316,21 +329,42 @@ int fs_modal_coordinates(const fs_data* d, int body, double* p, int capacity, in
 
 int fs_evaluate_outputs(fs_data* d) {
   if (!d) return null_argument("fs_evaluate_outputs"), FS_STEP_ERROR;
-  return static_cast<int>(fsx::evaluate_outputs(*d->model, d->data));
+  const fsx::StepStatus s = fsx::evaluate_outputs(*d->model, d->data);
+  if (s != fsx::StepStatus::ok) {  // a meter refused a sample: which, and what
+    guarded("fs_evaluate_outputs", [&] {
+      d->error = d->data.message.data();
+      return fail(FS_ERROR_INVALID_ARGUMENT, "fs_evaluate_outputs: " + d->error);
+    });
+  }
+  return static_cast<int>(s);
+}
+
+// Read-outs that return a value: a bad handle gives NaN (or -1) and sets fs_last_error.
+static void report_bad_handle(const char* where, const char* what, int handle) {
+  guarded(where, [&] { return bad_handle(where, what, handle); });
 }
 
 double fs_output_value(const fs_data* d, int output) {
-  if (!d || output < 0 || output >= d->model->num_outputs()) return kNaN;
+  if (!d) return guarded("fs_output_value", [] { return null_argument("fs_output_value"); }), kNaN;
+  if (output < 0 || output >= d->model->num_outputs())
+    return report_bad_handle("fs_output_value", "output", output), kNaN;
   return fsx::output_value(d->data, fsx::OutputId{output});
 }
 
 double fs_meter_damage(fs_data* d, int meter) {
-  if (!d || !in_range(meter, d->model->meters().size())) return kNaN;
+  if (!d) return guarded("fs_meter_damage", [] { return null_argument("fs_meter_damage"); }), kNaN;
+  if (!in_range(meter, d->model->meters().size()))
+    return report_bad_handle("fs_meter_damage", "meter", meter), kNaN;
   return fsx::meter_damage(d->data, fsx::MeterId{meter});
 }
 
 long long fs_meter_refused_samples(const fs_data* d, int meter) {
-  if (!d || !in_range(meter, d->model->meters().size())) return -1;
+  if (!d)
+    return guarded("fs_meter_refused_samples",
+                   [] { return null_argument("fs_meter_refused_samples"); }),
+           -1;
+  if (!in_range(meter, d->model->meters().size()))
+    return report_bad_handle("fs_meter_refused_samples", "meter", meter), -1;
   return static_cast<long long>(fsx::meter_refused_samples(d->data, fsx::MeterId{meter}));
 }
 

@@ -249,9 +249,9 @@ int fs_builder_set_integrator(fs_model_builder* b, double step, double spectral_
   return guarded("fs_builder_set_integrator", [&] {
     if (!b) return null_argument("fs_builder_set_integrator");
     auto& s = b->builder.settings();
-    s.step = step;
-    s.spectral_radius = spectral_radius;
-    s.max_iterations = max_iterations;
+    if (step > 0) s.step = step;  // else the default (as the header says)
+    if (spectral_radius >= 0) s.spectral_radius = spectral_radius;
+    if (max_iterations > 0) s.max_iterations = max_iterations;
     if (tolerance > 0) {  // an absolute tolerance in place of the default relative one
       s.acceleration_tolerance = tolerance;
       s.relative_acceleration_tolerance = 0;

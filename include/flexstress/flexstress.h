@@ -176,10 +176,12 @@ int fs_builder_add_damage_meter(fs_model_builder* b, const char* name, int outpu
                                 double lower, double upper, double scale);
 int fs_builder_add_input(fs_model_builder* b, const char* name);
 int fs_builder_set_gravity(fs_model_builder* b, const double gravity[3]);
-/* Integrator settings every data starts with: step (s), spectral radius at infinity in [0, 1]
- * (1: no numerical damping), Newton iterations per step, and an absolute Newton tolerance
- * (an acceleration, m/s^2) in place of the default: the larger of 1e-5 and 1e-6 of the larger
- * of |gravity| and the largest acceleration at fs_initialize; <= 0 keeps the default. */
+/* Integrator settings every data starts with: step (s; default 1e-3), spectral radius at
+ * infinity in [0, 1] (1: no numerical damping; default 0.8), Newton iterations per step
+ * (default 30), and an absolute Newton tolerance (an acceleration, m/s^2) in place of the
+ * default: the larger of 1e-5 and 1e-6 of the larger of |gravity| and the largest acceleration
+ * at fs_initialize. A step, iteration count or tolerance <= 0, or a negative spectral radius,
+ * keeps that default. */
 int fs_builder_set_integrator(fs_model_builder* b, double step, double spectral_radius,
                               int max_iterations, double tolerance);
 
@@ -271,6 +273,10 @@ int fs_marker_frame(const fs_data* d, int marker, double origin[3], double axes[
 /* Force and moment the joint applies to marker j's body, at marker j's origin, in marker i's
  * axes. Valid after fs_initialize, a step or an equilibrium. */
 int fs_joint_reaction(const fs_data* d, int joint, double force[3], double moment[3]);
+/* What a driver exerts along its coordinate: the force (prismatic, N) pushing marker j along
+ * marker i's +z, or the moment (revolute, N m) turning it about that axis.
+ * FS_ERROR_INVALID_ARGUMENT for a joint that is not a driver. */
+int fs_driver_effort(const fs_data* d, int joint, double* effort);
 
 typedef struct fs_energy {
   double kinetic, gravity, elastic, springs, total;

@@ -230,6 +230,8 @@ static void check_outputs_and_checkpoints(const char* modal_file, const referenc
   CHECK(isnan(fs_output_value(d, 7)) && isnan(fs_meter_damage(d, 3)));
   CHECK(fs_meter_refused_samples(d, meter) == 0); /* p_0 stayed within -1..1 */
   CHECK(fs_meter_refused_samples(d, 3) == -1 && fs_meter_refused_samples(NULL, 0) == -1);
+  CHECK(isnan(fs_meter_damage(d, 3)) && strstr(fs_last_error(), "no meter with handle 3") != NULL);
+  CHECK(isnan(fs_output_value(d, 7)) && strstr(fs_last_error(), "no output with handle 7") != NULL);
   /* Restored at 0.2 s and continued: the same state as the run that never stopped. */
   CHECK(fs_checkpoint_restore(resumed, bytes, size) == FS_OK);
   CHECK(fabs(fs_time(resumed) - 0.2) < 1e-12);
@@ -278,6 +280,7 @@ static void check_drivers(void) {
   fs_data* d;
   fs_motion_law law = fs_law_callback(ramp, &rate);
   int crank, pivot, end, hinge, drive, input, i;
+  double effort = 1.0;
   crank = fs_builder_add_rigid_body(b, "crank", 2.0, com, inertia);
   pivot = fs_builder_add_marker(b, "pivot", FS_GROUND, -1, NULL, NULL);
   end = fs_builder_add_marker(b, "crank end", crank, -1, NULL, NULL);
@@ -295,6 +298,10 @@ static void check_drivers(void) {
   CHECK(fs_body_angular_velocity(d, crank, w) == FS_OK && fabs(w[2] - 0.5) < 1e-4);
   CHECK(fs_body_velocity(d, crank, v) == FS_OK && fabs(v[0]) < 1e-9);
   CHECK(fs_body_position(d, crank, x) == FS_OK && fabs(x[0]) < 1e-9);
+  /* At a constant rate without gravity the motor exerts no moment; the hinge is no driver. */
+  CHECK(fs_driver_effort(d, drive, &effort) == FS_OK && fabs(effort) < 1e-6);
+  CHECK(fs_driver_effort(d, hinge, &effort) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_last_error(), "joint 'hinge'") != NULL);
   /* A table law (passes through its rows; 0.05 rad at t = 0.1 s, where the ramp is). Its rate
    * differs from the ramp's: a new law is a restart, so initialize again (projects v). */
   law = fs_law_table(table, 4);
@@ -387,9 +394,21 @@ static void check_errors(const char* modal_file, const reference* r) {
   fs_builder_destroy(b);
   b = fs_builder_create();
   fs_builder_add_rigid_body(b, "block", 1.0, x, eye);
-  CHECK(fs_builder_set_integrator(b, 0.0, 0.8, 30, 0.0) == FS_OK); /* finalize checks it */
+  CHECK(fs_builder_set_integrator(b, 1e-3, 1.5, 30, 0.0) == FS_OK); /* finalize checks it */
   CHECK(fs_builder_finalize(b, &m) == FS_ERROR_INVALID_ARGUMENT && m == NULL);
-  CHECK(strstr(fs_builder_error(b), "the step must be positive") != NULL);
+  CHECK(strstr(fs_builder_error(b), "the spectral radius must be in [0, 1]") != NULL);
+  fs_builder_destroy(b);
+  /* Values <= 0 (a negative spectral radius) keep the defaults: 1 ms, 0.8, 30 iterations. */
+  b = fs_builder_create();
+  fs_builder_add_rigid_body(b, "block", 1.0, x, eye);
+  CHECK(fs_builder_set_integrator(b, 0.0, -1.0, 0, 0.0) == FS_OK);
+  CHECK(fs_builder_finalize(b, &m) == FS_OK);
+  d = fs_data_create(m);
+  CHECK(fs_settings_get(d, &settings) == FS_OK);
+  CHECK(settings.step == 1e-3 && settings.spectral_radius == 0.8 && settings.max_iterations == 30);
+  fs_data_destroy(d);
+  fs_model_destroy(m);
+  m = NULL;
   fs_builder_destroy(b);
 
   /* Null pointers and handles of nothing: error codes, never a crash. */

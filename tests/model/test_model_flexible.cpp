@@ -5,6 +5,7 @@
 // tests/model/test_flexible_models.cpp. That a step allocates nothing, with either kernel, is
 // tests/model/test_no_alloc.cpp's.
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -172,12 +173,14 @@ TEST_CASE("runtime model: a meter counts the samples outside its window; a check
   REQUIRE(initialize(*m, d).ok());
   std::vector<unsigned char> saved;
   long outside = 0, refused_steps = 0;
+  std::string first_refusal;
   for (int i = 0; i < 60; ++i) {
     REQUIRE(step(*m, d) == StepStatus::ok);
     const StepStatus s = evaluate_outputs(*m, d);
     // The grid's window is the class edges: a sample beyond +-kNarrow is outside it.
     outside += std::abs(output_value(d, modal_sum[0])) > kNarrow ? 1 : 0;
     refused_steps += s == StepStatus::capacity_exceeded ? 1 : 0;
+    if (s != StepStatus::ok && first_refusal.empty()) first_refusal = d.message.data();
     if (i == 29) {
       auto bytes = save_checkpoint(*m, d);
       REQUIRE(bytes.ok());
@@ -188,6 +191,9 @@ TEST_CASE("runtime model: a meter counts the samples outside its window; a check
   CHECK(meter_refused_samples(d, narrow) == outside);
   CHECK(refused_steps == outside);  // evaluate_outputs said so at each of them
   CHECK(meter_refused_samples(d, wide) == 0);
+  MESSAGE(first_refusal);  // names the meter, the sample and the window
+  CHECK(first_refusal.find("meter 'narrow'") != std::string::npos);
+  CHECK(first_refusal.find("outside its class window") != std::string::npos);
   REQUIRE(restore_checkpoint(*m, resumed, saved.data(), saved.size(), "at step 30").ok());
   for (int i = 30; i < 60; ++i) {
     REQUIRE(step(*m, resumed) == StepStatus::ok);
@@ -195,6 +201,34 @@ TEST_CASE("runtime model: a meter counts the samples outside its window; a check
   }
   CHECK(meter_refused_samples(resumed, narrow) == meter_refused_samples(d, narrow));
   CHECK(meter_damage(resumed, wide) == meter_damage(d, wide));
+}
+
+TEST_CASE("runtime model: initialize turns a flexible body to meet a driver's law, not bends it") {
+  // A driver whose law starts at 0.5 rad on a beam lying at 0 rad: the one assembly without
+  // strain is the beam turned rigidly by 0.5 rad about the hinge.
+  const auto beam = hinged_beam(4);
+  ModelBuilder<double> b;
+  const BodyId body = b.add_flexible_body("beam", beam.data, 4);
+  const MarkerId pivot = b.add_marker("pivot", b.ground(), -1);
+  const MarkerId root = b.add_marker("root", body, beam.interface_nodes[0]);
+  const MarkerId tip = b.add_marker("tip", body, beam.line.nodes.back());
+  b.add_joint("hinge", JointKind::revolute, pivot, root);
+  constexpr double kAngle = 0.5;
+  b.add_driver("drive", JointKind::revolute_driver, pivot, root,
+               MotionLaw<double>::constant_acceleration(kAngle));
+  auto m = b.finalize();
+  REQUIRE_MESSAGE(m.ok(), m.error().what());
+  Data<double> d(*m);
+  REQUIRE(initialize(*m, d).ok());
+  const Vector3d x = marker_frame(*m, d, root).axes.col(0);
+  MESSAGE("root axis at " << std::atan2(x.y(), x.x()) << " rad, modal coordinates |p| "
+                          << modal_coordinates(*m, d, body).norm() << ", elastic energy "
+                          << energy(*m, d).elastic << " J");
+  CHECK(std::atan2(x.y(), x.x()) == doctest::Approx(kAngle).epsilon(1e-9));
+  CHECK(energy(*m, d).elastic < 1e-9);
+  const Vector3d at = marker_frame(*m, d, tip).origin;
+  CHECK(at.x() == doctest::Approx(kLength * std::cos(kAngle)).epsilon(1e-9));
+  CHECK(at.y() == doctest::Approx(kLength * std::sin(kAngle)).epsilon(1e-9));
 }
 
 }  // namespace test_model_flexible

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 
 #include <Eigen/Core>
 
@@ -40,7 +41,8 @@ Eigen::Matrix<Scalar, 12, 1> body_inertia_coordinates(const Model<Scalar>& model
 /// Evaluates every output at d's state and (feed_meters) pushes each meter's output. Returns ok,
 /// or the first meter's refusal (invalid_input for a non-finite value, capacity_exceeded
 /// outside its class window), having evaluated all outputs and fed every meter; each meter
-/// counts the samples it refused (meter_refused_samples).
+/// counts the samples it refused (meter_refused_samples), and d.message names the first
+/// refusing meter and its sample.
 template <class Scalar>
 StepStatus evaluate_outputs(const Model<Scalar>& model, Data<Scalar>& d, bool feed_meters = true) {
   for (const auto& set : model.output_sets()) {
@@ -54,10 +56,19 @@ StepStatus evaluate_outputs(const Model<Scalar>& model, Data<Scalar>& d, bool fe
   if (!feed_meters) return status;
   for (std::size_t k = 0; k < model.meters().size(); ++k) {
     const auto& m = model.meters()[k];
-    const StepStatus s = d.meters[k].push(m.scale * d.outputs(m.output));
+    const Scalar sample = m.scale * d.outputs(m.output);
+    const StepStatus s = d.meters[k].push(sample);
     if (s == StepStatus::ok) continue;
     ++d.meter_refused[k];
-    if (status == StepStatus::ok) status = s;
+    if (status != StepStatus::ok) continue;
+    status = s;
+    const auto& grid = d.meters[k].counter().grid();
+    std::snprintf(d.message.data(), d.message.size(),
+                  "meter '%s' at t = %g: sample %g %s [%g, %g] (not counted)", m.name.c_str(),
+                  static_cast<double>(d.t), static_cast<double>(sample),
+                  s == StepStatus::capacity_exceeded ? "outside its class window"
+                                                     : "not finite; its class window",
+                  static_cast<double>(grid.lower()), static_cast<double>(grid.upper()));
   }
   return status;
 }

@@ -68,11 +68,24 @@ Eigen::VectorXd swing(const testing::BeamBody& beam, int modes, bool bounded, in
   return out;
 }
 
-// The beam of hinged_beam() with `modes` modes on its hinge under gravity, added to b.
+// The beam of hinged_beam() with `modes` modes on its hinge, added to b, and the hinge's
+// markers (where a driver goes).
+struct HingedParts {
+  BodyId body;
+  MarkerId pivot, root;
+};
+HingedParts add_hinge(ModelBuilder<double>& b, const testing::BeamBody& beam, int modes) {
+  HingedParts h;
+  h.body = b.add_flexible_body("beam", beam.data, modes);
+  h.pivot = b.add_marker("pivot", b.ground(), -1);
+  h.root = b.add_marker("root", h.body, beam.interface_nodes[0]);
+  b.add_joint("hinge", JointKind::revolute, h.pivot, h.root);
+  return h;
+}
+
+// The same under gravity.
 BodyId add_hinged(ModelBuilder<double>& b, const testing::BeamBody& beam, int modes) {
-  const BodyId body = b.add_flexible_body("beam", beam.data, modes);
-  b.add_joint("hinge", JointKind::revolute, b.add_marker("pivot", b.ground(), -1),
-              b.add_marker("root", body, beam.interface_nodes[0]));
+  const BodyId body = add_hinge(b, beam, modes).body;
   b.set_gravity(Vector3d(0, -9.81, 0));
   return body;
 }
@@ -208,11 +221,8 @@ TEST_CASE("runtime model: initialize turns a flexible body to meet a driver's la
   // strain is the beam turned rigidly by 0.5 rad about the hinge.
   const auto beam = hinged_beam(4);
   ModelBuilder<double> b;
-  const BodyId body = b.add_flexible_body("beam", beam.data, 4);
-  const MarkerId pivot = b.add_marker("pivot", b.ground(), -1);
-  const MarkerId root = b.add_marker("root", body, beam.interface_nodes[0]);
+  const auto [body, pivot, root] = add_hinge(b, beam, 4);
   const MarkerId tip = b.add_marker("tip", body, beam.line.nodes.back());
-  b.add_joint("hinge", JointKind::revolute, pivot, root);
   constexpr double kAngle = 0.5;
   b.add_driver("drive", JointKind::revolute_driver, pivot, root,
                MotionLaw<double>::constant_acceleration(kAngle));
@@ -229,6 +239,38 @@ TEST_CASE("runtime model: initialize turns a flexible body to meet a driver's la
   const Vector3d at = marker_frame(*m, d, tip).origin;
   CHECK(at.x() == doctest::Approx(kLength * std::cos(kAngle)).epsilon(1e-9));
   CHECK(at.y() == doctest::Approx(kLength * std::sin(kAngle)).epsilon(1e-9));
+}
+
+TEST_CASE("runtime model: a driver's law that turns NaN stops the step naming the joint") {
+  // A callback law (a controller, say) that returns NaN from t = 5 ms on.
+  const auto beam = hinged_beam(4);
+  ModelBuilder<double> b;
+  const HingedParts hinge = add_hinge(b, beam, 4);
+  b.add_driver("drive", JointKind::revolute_driver, hinge.pivot, hinge.root,
+               MotionLaw<double>::from_callback(
+                   [](double t, double* out, void*) {
+                     out[0] = t < 0.005 ? 0.1 * t : std::nan("");
+                     out[1] = 0.1;
+                     out[2] = 0.0;
+                   },
+                   nullptr));
+  auto m = b.finalize();
+  REQUIRE_MESSAGE(m.ok(), m.error().what());
+  Data<double> d(*m);
+  REQUIRE(initialize(*m, d).ok());
+  StepStatus status = StepStatus::ok;
+  int steps = 0;
+  while (status == StepStatus::ok && steps < 20) {
+    status = step(*m, d);
+    steps += status == StepStatus::ok ? 1 : 0;
+  }
+  const std::string why = std::string(to_string(status)) + ": " + d.message.data();
+  MESSAGE(why);
+  CHECK(status == StepStatus::invalid_input);
+  CHECK(steps == 4);  // t = 1 .. 4 ms passed; the step to 5 ms reads the NaN
+  CHECK(std::string(d.message.data()).find("joint 'drive'") != std::string::npos);
+  CHECK(std::string(d.message.data()).find("not finite") != std::string::npos);
+  CHECK(d.q.allFinite());  // the failed step left the state as it was
 }
 
 }  // namespace test_model_flexible

@@ -385,13 +385,19 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   }
   if (!converged || !finite) {
     // A step from a finite state that diverges or turns non-finite was too large for the
-    // motion; from a non-finite state it could not start. d.message says where.
+    // motion, unless a law it follows is not finite there (invalid input, not to be split);
+    // from a non-finite state it could not start. d.message says where.
     const bool start_finite = in.q_n.allFinite() && in.v_n.allFinite() && in.vd_n.allFinite();
+    const int bad_law = start_finite ? detail::nonfinite_law(model, d, t_n + h) : -1;
     const StepStatus status = !start_finite         ? StepStatus::non_finite_state
+                              : bad_law >= 0        ? StepStatus::invalid_input
                               : diverged || !finite ? StepStatus::step_too_large
                                                     : StepStatus::newton_not_converged;
     detail::undo_step(d, t_n);
-    detail::explain_step_failure(model, d, status, t_n, it, previous, in.tol_x);
+    if (bad_law >= 0)
+      detail::explain_nonfinite_law(model, d, bad_law, t_n, t_n + h);
+    else
+      detail::explain_step_failure(model, d, status, t_n, it, previous, in.tol_x);
     return status;
   }
   // Local error estimate of the converged step (Zienkiewicz & Xie, Earthquake Eng. Struct.

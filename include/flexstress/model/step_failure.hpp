@@ -109,6 +109,33 @@ void explain_violation(const Model<Scalar>& model, Data<Scalar>& d,
                 static_cast<double>(v), what, static_cast<double>(d.settings.violation_limit));
 }
 
+/// The first active joint whose law is not finite at t (its value, rate or acceleration: a
+/// callback or an input gone NaN), or -1. Only on a failed step's path.
+template <class Scalar>
+int nonfinite_law(const Model<Scalar>& model, const Data<Scalar>& d, Scalar t) {
+  for (std::size_t k = 0; k < model.joints().size(); ++k) {
+    const auto& j = model.joints()[k];
+    if (j.law < 0 || !d.joint_active[k]) continue;
+    const MotionValue<Scalar> v = d.laws[static_cast<std::size_t>(j.law)](t, d.inputs.data());
+    if (!std::isfinite(v.value) || !std::isfinite(v.rate) || !std::isfinite(v.acceleration))
+      return static_cast<int>(k);
+  }
+  return -1;
+}
+
+template <class Scalar>
+void explain_nonfinite_law(const Model<Scalar>& model, Data<Scalar>& d, int joint, Scalar t_n,
+                           Scalar t) {
+  const auto& j = model.joints()[static_cast<std::size_t>(joint)];
+  const MotionValue<Scalar> v = d.laws[static_cast<std::size_t>(j.law)](t, d.inputs.data());
+  std::snprintf(d.message.data(), d.message.size(),
+                "step from t = %g: joint '%s' (%s): its law is not finite at t = %g (value %g, "
+                "rate %g, acceleration %g)",
+                static_cast<double>(t_n), j.name.c_str(), to_string(j.kind), static_cast<double>(t),
+                static_cast<double>(v.value), static_cast<double>(v.rate),
+                static_cast<double>(v.acceleration));
+}
+
 template <class Scalar>
 void explain_step_failure(const Model<Scalar>& model, Data<Scalar>& d, StepStatus status,
                           Scalar t_n, int iterations, Scalar size, Scalar tolerance) {

@@ -70,8 +70,9 @@ Status set_settings(const Model<Scalar>&, Data<Scalar>& d, const ImplicitSetting
   return Status::success();
 }
 
-/// Consistent initial conditions at d.t: positions onto Phi = 0 (least change weighted by mass
-/// and modal stiffness: a flexible body is turned, not bent, to meet a joint or driver),
+/// Consistent initial conditions at d.t: positions onto Phi = 0 (rigid coordinates first, so a
+/// flexible body is turned, not bent, to meet a joint or driver; modal coordinates join,
+/// weighted by their stiffness, only where deformation must close a loop),
 /// velocities onto B v + Phi_t = 0, then accelerations and multipliers from the equations of
 /// motion. Fails, naming the joint or body, if the joints cannot be assembled, a coordinate is
 /// not finite or an input law reads an input never set.

@@ -119,7 +119,9 @@ struct MarkerState {
 };
 
 /// One row's Jacobian on one body: six rigid columns and the weights of the modal columns,
-/// g_v per marker vector v (origin, x, y, z), in the body frame.
+/// g_v per marker vector v (origin, x, y, z), in the body frame. Only the weights named in
+/// `parts` hold values: a row starts with none (clear()), and the first addition to a weight
+/// sets it, so clearing a row does not write the twelve weights a row mostly leaves unused.
 template <class Scalar>
 struct RowSide {
   Eigen::Matrix<Scalar, 1, 6> rigid = Eigen::Matrix<Scalar, 1, 6>::Zero();
@@ -129,6 +131,12 @@ struct RowSide {
   /// these only (a revolute's coincidence rows read the origin, its perpendicularity rows one
   /// axis each, although the joint as a whole reads three vectors).
   unsigned parts = 0;
+
+  /// The zero row (its weights left as they are: none is named in parts).
+  void clear() {
+    rigid.setZero();
+    parts = 0;
+  }
 
   // Written out in scalars: these run for every row of every joint at every Newton iterate,
   // and as Eigen expressions GCC left their 3-vector products to out-of-line calls.
@@ -157,7 +165,11 @@ struct RowSide {
   static RowSide combine(Scalar s, const RowSide& a, Scalar t, const RowSide& b) {
     RowSide r;
     r.rigid = s * a.rigid + t * b.rigid;
-    for (std::size_t k = 0; k < 4; ++k) r.weight[k] = s * a.weight[k] + t * b.weight[k];
+    for (std::size_t k = 0; k < 4; ++k) {
+      const unsigned bit = 1u << k;
+      if (a.parts & bit) r.weight[k] += s * a.weight[k];
+      if (b.parts & bit) r.weight[k] += t * b.weight[k];
+    }
     r.parts = a.parts | b.parts;
     return r;
   }
@@ -171,15 +183,19 @@ struct RowSide {
                         a(0, 1) * b0 + a(1, 1) * b1 + a(2, 1) * b2,
                         a(0, 2) * b0 + a(1, 2) * b1 + a(2, 2) * b2);
   }
-  /// rigid's rotation columns += (u x bb)^T, weight[v] += bb.
+  /// rigid's rotation columns += (u x bb)^T, weight[v] += bb (= bb if not yet in parts).
   FLEXSTRESS_ALWAYS_INLINE void add_moment_and_weight(const Vec3<Scalar>& u, const Vec3<Scalar>& bb,
                                                       int v) {
     rigid(3) += u(1) * bb(2) - u(2) * bb(1);
     rigid(4) += u(2) * bb(0) - u(0) * bb(2);
     rigid(5) += u(0) * bb(1) - u(1) * bb(0);
     Vec3<Scalar>& w = weight[static_cast<std::size_t>(v)];
-    for (int c = 0; c < 3; ++c) w(c) += bb(c);
-    parts |= 1u << v;
+    const unsigned bit = 1u << v;
+    if (parts & bit)
+      for (int c = 0; c < 3; ++c) w(c) += bb(c);
+    else
+      w = bb;
+    parts |= bit;
   }
 };
 
@@ -195,8 +211,8 @@ struct JointRows {
     for (int r = 0; r < n; ++r) {
       const auto k = static_cast<std::size_t>(r);
       phi[k] = phi_t[k] = conv[k] = Scalar(0);
-      i[k] = RowSide<Scalar>();
-      j[k] = RowSide<Scalar>();
+      i[k].clear();
+      j[k].clear();
     }
   }
 };

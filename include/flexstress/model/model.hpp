@@ -130,7 +130,21 @@ class Model {
     DamageMeter<Scalar> prototype;  ///< its empty state, copied into each Data
   };
 
+  /// One joint's rows on one body, as the block products B x and B^T x walk them: listed in
+  /// joint order (side i, then side j) at finalize, so that a product is one pass over a flat
+  /// array of fixed-size kernel calls.
+  struct JacobianBlock {
+    void (*transpose_times)(int nv, const Scalar* rows, int count, const Scalar* x, Scalar* y);
+    void (*rows_times)(int nv, const Scalar* rows, int count, const Scalar* x, Scalar* y);
+    int nv = 6;        ///< the body's velocities
+    int jac = 0;       ///< offset in Data::jacobian
+    int rows = 0;      ///< the joint's equations
+    int row = 0;       ///< the joint's first constraint row
+    int v_offset = 0;  ///< the body's first velocity
+  };
+
   const std::vector<Body>& bodies() const { return bodies_; }
+  const std::vector<JacobianBlock>& jacobian_blocks() const { return jacobian_blocks_; }
   const std::vector<Marker>& markers() const { return markers_; }
   const std::vector<Joint>& joints() const { return joints_; }
   const std::vector<Force>& forces() const { return forces_; }
@@ -199,6 +213,7 @@ class Model {
   std::vector<Body> bodies_;
   std::vector<Marker> markers_;
   std::vector<Joint> joints_;
+  std::vector<JacobianBlock> jacobian_blocks_;
   std::vector<Force> forces_;
   std::vector<std::string> inputs_;
   std::vector<OutputSet> output_sets_;

@@ -409,6 +409,12 @@ class ModelBuilder {
         j.jac_j = jac;
         jac += j.equations * m.bodies_[static_cast<std::size_t>(j.body_j)].nv;
       }
+      for (const auto& [body, block] : {std::pair{j.body_i, j.jac_i}, std::pair{j.body_j, j.jac_j}})
+        if (body >= 0) {
+          const auto& b = m.bodies_[static_cast<std::size_t>(body)];
+          m.jacobian_blocks_.push_back({b.kernels->transpose_times, b.kernels->rows_times, b.nv,
+                                        block, j.equations, j.row, b.v_offset});
+        }
       if (j.body_i >= 0 && j.body_j >= 0) m.pattern_.couplings.emplace_back(j.body_i, j.body_j);
       m.slot_parts_[static_cast<std::size_t>(
           m.markers_[static_cast<std::size_t>(j.marker_i)].slot)] |= joint_parts_i(j.kind);

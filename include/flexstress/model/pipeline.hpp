@@ -301,29 +301,17 @@ void set_mass_blocks(const Model<Scalar>& model, const Data<Scalar>& d, S& s) {
 template <class Scalar, class X, class Y>
 void add_jacobian_transpose_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& x,
                                   Y& y) {
-  for (const auto& j : model.joints())
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? j.body_i : j.body_j;
-      if (body < 0) continue;
-      const auto& b = model.bodies()[static_cast<std::size_t>(body)];
-      b.kernels->transpose_times(b.nv, d.jacobian.data() + (side == 0 ? j.jac_i : j.jac_j),
-                                 j.equations, x.data() + j.row, y.data() + b.v_offset);
-    }
+  for (const auto& k : model.jacobian_blocks())
+    k.transpose_times(k.nv, d.jacobian.data() + k.jac, k.rows, x.data() + k.row,
+                      y.data() + k.v_offset);
 }
 
 /// y = B x (y of num_constraints() entries).
 template <class Scalar, class X, class Y>
 void jacobian_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& x, Y& y) {
   y.setZero();  // the joints' rows tile it; at once, not a call per joint
-  for (const auto& j : model.joints()) {
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? j.body_i : j.body_j;
-      if (body < 0) continue;
-      const auto& b = model.bodies()[static_cast<std::size_t>(body)];
-      b.kernels->rows_times(b.nv, d.jacobian.data() + (side == 0 ? j.jac_i : j.jac_j), j.equations,
-                            x.data() + b.v_offset, y.data() + j.row);
-    }
-  }
+  for (const auto& k : model.jacobian_blocks())
+    k.rows_times(k.nv, d.jacobian.data() + k.jac, k.rows, x.data() + k.v_offset, y.data() + k.row);
 }
 
 /// s += alpha B^T B, joint by joint: a joint's rows touch only its two bodies' columns.

@@ -19,12 +19,21 @@
 #include "flexstress/fatigue/sn_curve.hpp"
 #include "flexstress/model/all.hpp"
 #include "flexstress/reduction/modal_body_io.hpp"
+#include "flexstress/stress/beam_fibre_stress_modes.hpp"
 #include "flexstress/version.hpp"
 
 namespace fsx = flexstress;
 
 struct fs_model_builder {
   fsx::ModelBuilder<double> builder;
+  // The modal body data of each flexible body by handle, and its mode count: rows of stress
+  // outputs are made from it (fs_builder_add_beam_fibre_stress).
+  struct FlexibleBody {
+    int body = -1;
+    int modes = 0;
+    std::shared_ptr<const fsx::reduction::ModalBodyData> data;
+  };
+  std::vector<FlexibleBody> flexible_bodies;
   // Mistakes the C layer finds (a file that cannot be read), reported by finalize before the
   // builder's own.
   fsx::Error first_error;

@@ -91,7 +91,10 @@ int fs_builder_add_flexible_body(fs_model_builder* b, const char* name, const ch
       return null_argument("fs_builder_add_flexible_body"), FS_INVALID_HANDLE;
     auto data = fsx::reduction::load_modal_body(path);
     if (!data) return record(b, data.error(), std::string("body '") + name + "'");
-    return b->builder.add_flexible_body(name, *data, modes).index;
+    const int body = b->builder.add_flexible_body(name, *data, modes).index;
+    b->flexible_bodies.push_back(
+        {body, modes, std::make_shared<const fsx::reduction::ModalBodyData>(std::move(*data))});
+    return body;
   });
 }
 
@@ -209,6 +212,34 @@ int fs_builder_add_stress_outputs(fs_model_builder* b, const char* name, int bod
     using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     const Eigen::MatrixXd f = Eigen::Map<const RowMajor>(rows, num_outputs, num_modes);
     return b->builder.add_stress_outputs(name, fsx::BodyId{body}, f).first.index;
+  });
+}
+
+int fs_builder_add_beam_fibre_stress(fs_model_builder* b, const char* name, int body, long node_a,
+                                     long node_b, const double orientation[3],
+                                     double youngs_modulus, double xi, double y, double z) {
+  return guarded_handle("fs_builder_add_beam_fibre_stress", [&] {
+    if (!b || !name) return null_argument("fs_builder_add_beam_fibre_stress"), FS_INVALID_HANDLE;
+    const std::string part = std::string("output '") + name + "'";
+    const auto found = std::find_if(b->flexible_bodies.begin(), b->flexible_bodies.end(),
+                                    [&](const auto& f) { return f.body == body; });
+    if (found == b->flexible_bodies.end())
+      return record(b,
+                    fsx::make_error(fsx::ErrorCode::invalid_argument, "body ", body,
+                                    " is not a flexible body of this builder"),
+                    part);
+    fsx::stress::BeamFibre fibre;
+    fibre.node_a = node_a;
+    fibre.node_b = node_b;
+    if (orientation) fibre.orientation = vec3(orientation);
+    fibre.youngs_modulus = youngs_modulus;
+    fibre.xi = xi;
+    fibre.y = y;
+    fibre.z = z;
+    auto row = fsx::stress::beam_fibre_stress_modes(*found->data, fibre, found->modes);
+    if (!row) return record(b, row.error(), part);
+    return b->builder.add_stress_outputs(name, fsx::BodyId{body}, Eigen::MatrixXd(*row))
+        .first.index;
   });
 }
 

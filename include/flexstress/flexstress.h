@@ -169,6 +169,16 @@ int fs_builder_add_point_load(fs_model_builder* b, const char* name, int marker,
  * it. */
 int fs_builder_add_stress_outputs(fs_model_builder* b, const char* name, int body,
                                   const double* rows, int num_outputs, int num_modes);
+/* A beam's axial stress as one output of a flexible body: sigma_xx at the fibre (y, z) of the
+ * section (m, along its local y and z axes) at xi (0 at node_a, 1 at node_b) of the
+ * Euler-Bernoulli beam between two nodes of the body's modal body file, E (u' - y v'' - z w'')
+ * from their mode shapes (displacements and rotations). orientation: the section's local y axis
+ * in the body frame (NULL: global y, or z for a beam along y). Errors name the node (one the
+ * file does not have, or without rotations) or the value (xi outside [0, 1], E not positive).
+ * Returns the output's handle. */
+int fs_builder_add_beam_fibre_stress(fs_model_builder* b, const char* name, int body, long node_a,
+                                     long node_b, const double orientation[3],
+                                     double youngs_modulus, double xi, double y, double z);
 /* A damage meter on an output: streaming rainflow on 128 classes over [lower, upper] of
  * scale * output (e.g. 1e-6 for Pa to MPa), damage by the IIW curve of class fat (MPa at 2e6
  * cycles, slope 3, Haibach slope 5 beyond the knee at 1e7). */

@@ -74,6 +74,11 @@ int main(int argc, char** argv) {
   std::fprintf(f, "frequencies %ld", static_cast<long>(hz.size()));
   for (Index i = 0; i < hz.size(); ++i) std::fprintf(f, " %.17g", hz(i));
   std::fprintf(f, "\n");
+  // The root element's other node and what M c / I needs: E, the section's Iz (bending in the
+  // x-y plane) and its half height along y.
+  std::fprintf(f, "next_node %ld youngs_modulus %.17g iz %.17g half_height %.17g\n",
+               static_cast<long>(line.nodes[1]), mesh.material(spec.material).youngs_modulus,
+               section.iz, section.half_height_y);
   std::fclose(f);
   std::printf("wrote %s/beam.fsmodal and %s (first FE frequencies %g, %g, %g Hz)\n", dir.c_str(),
               path.c_str(), hz(0), hz(1), hz(2));

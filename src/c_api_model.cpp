@@ -215,6 +215,25 @@ int fs_builder_add_stress_outputs(fs_model_builder* b, const char* name, int bod
   });
 }
 
+long fs_builder_nearest_node(const fs_model_builder* b, int body, const double point[3],
+                             double* distance) {
+  long node = -1;
+  guarded("fs_builder_nearest_node", [&] {
+    if (!b || !point) return null_argument("fs_builder_nearest_node");
+    const auto found = std::find_if(b->flexible_bodies.begin(), b->flexible_bodies.end(),
+                                    [&](const auto& f) { return f.body == body; });
+    if (found == b->flexible_bodies.end())
+      return fail(FS_ERROR_INVALID_HANDLE, "fs_builder_nearest_node: body " + std::to_string(body) +
+                                               " is not a flexible body of this builder");
+    const fsx::Vec3<double> x = vec3(point);
+    node = static_cast<long>(found->data->nearest_node(x));
+    if (node >= 0 && distance)
+      *distance = (found->data->node_positions[static_cast<std::size_t>(node)] - x).norm();
+    return int(FS_OK);
+  });
+  return node;
+}
+
 int fs_builder_add_beam_fibre_stress(fs_model_builder* b, const char* name, int body, long node_a,
                                      long node_b, const double orientation[3],
                                      double youngs_modulus, double xi, double y, double z) {

@@ -169,6 +169,11 @@ int fs_builder_add_point_load(fs_model_builder* b, const char* name, int marker,
  * it. */
 int fs_builder_add_stress_outputs(fs_model_builder* b, const char* name, int body,
                                   const double* rows, int num_outputs, int num_modes);
+/* The node of a flexible body's modal body file nearest to `point` (body frame, m), for markers
+ * and fibre stresses; its distance in *distance if not NULL. -1 (fs_last_error says why) for a
+ * body that is not flexible or a null point. */
+long fs_builder_nearest_node(const fs_model_builder* b, int body, const double point[3],
+                             double* distance);
 /* A beam's axial stress as one output of a flexible body: sigma_xx at the fibre (y, z) of the
  * section (m, along its local y and z axes) at xi (0 at node_a, 1 at node_b) of the
  * Euler-Bernoulli beam between two nodes of the body's modal body file, E (u' - y v'' - z w'')

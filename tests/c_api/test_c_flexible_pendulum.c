@@ -489,7 +489,9 @@ static void check_fibre_stress(const char* modal_file, const reference* r) {
   fs_model* m = NULL;
   fs_data* d;
   int beam, pivot, root, top, bottom, status;
-  double expected, sigma_top, sigma_bottom;
+  double expected, sigma_top, sigma_bottom, distance = -1.0;
+  const double tip_point[3] = {r->length, 0.0, 0.0};
+  const double near_next[3] = {r->length / 24.0 + 0.01, 0.01, 0.0};
   beam = fs_builder_add_flexible_body(b, "beam", modal_file, 16);
   pivot = fs_builder_add_marker(b, "pivot", FS_GROUND, -1, NULL, NULL);
   root = fs_builder_add_marker(b, "root", beam, r->root_node, NULL, NULL);
@@ -524,6 +526,13 @@ static void check_fibre_stress(const char* modal_file, const reference* r) {
   /* Bad input names what is wrong: a node the file does not have, xi outside [0, 1]. */
   b = fs_builder_create();
   beam = fs_builder_add_flexible_body(b, "beam", modal_file, 16);
+  /* Nodes by position: the tip at x = L, the root's neighbour one element (L / 24) along. */
+  CHECK(fs_builder_nearest_node(b, beam, tip_point, &distance) == r->tip_node && distance < 1e-12);
+  CHECK(fs_builder_nearest_node(b, beam, near_next, &distance) == r->next_node);
+  CHECK(fabs(distance - 0.01 * sqrt(2.0)) < 1e-12);
+  CHECK(fs_builder_nearest_node(b, FS_GROUND, tip_point, NULL) == -1);
+  CHECK(strstr(fs_last_error(), "not a flexible body") != NULL);
+  CHECK(fs_builder_nearest_node(b, beam, NULL, NULL) == -1);
   CHECK(fs_builder_add_beam_fibre_stress(b, "far", beam, r->root_node, r->num_nodes + 3, NULL,
                                          r->youngs_modulus, 0.0, 0.0, 0.0) == FS_INVALID_HANDLE);
   CHECK(strstr(fs_last_error(), "output 'far'") != NULL && strstr(fs_last_error(), "node") != NULL);

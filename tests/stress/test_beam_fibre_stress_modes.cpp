@@ -112,6 +112,19 @@ TEST_CASE("fibre stress modes are the mesh element's fibre stress, mode by mode"
   }
 }
 
+TEST_CASE("a fibre's nodes found by position in the body data") {
+  // 8 elements of 0.1875 m along x: node k at x = 0.1875 k (the line's own numbering).
+  const auto body = all_modes_beam();
+  for (std::size_t k = 0; k < body.line.nodes.size(); ++k) {
+    const double x = body.line.positions[k];
+    CHECK(body.data.nearest_node(Vector3d(x, 0, 0)) == body.line.nodes[k]);
+    // Off the line and a little past the node, still nearer it than its neighbours.
+    CHECK(body.data.nearest_node(Vector3d(x + 0.09, 0.05, -0.02)) == body.line.nodes[k]);
+  }
+  CHECK(body.data.nearest_node(Vector3d(-5, 0, 0)) == body.line.nodes.front());
+  CHECK(reduction::ModalBodyData{}.nearest_node(Vector3d::Zero()) == -1);
+}
+
 TEST_CASE("fibre stress modes name what is wrong") {
   const auto body =
       testing::make_beam_body(1.0, fe::rectangular_hollow_section(0.06, 0.03, 0.003), 4, {0.0}, 4);

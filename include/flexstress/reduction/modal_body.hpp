@@ -56,6 +56,20 @@ struct ModalBodyData {
     return l.trace() * Matrix3d::Identity() - l;
   }
   Index num_nodes() const { return static_cast<Index>(node_positions.size()); }
+  /// The node nearest to x (body frame; the first of equally near ones), -1 for a body
+  /// without nodes: where a program that has only the body data finds a marker's node.
+  Index nearest_node(const Vector3d& x) const {
+    Index best = -1;
+    double best_distance = 0.0;
+    for (Index i = 0; i < num_nodes(); ++i) {
+      const double d = (node_positions[static_cast<std::size_t>(i)] - x).squaredNorm();
+      if (best < 0 || d < best_distance) {
+        best = i;
+        best_distance = d;
+      }
+    }
+    return best;
+  }
   /// Translational mode shapes (3 x n) at a node.
   auto phi_r(Index node) const { return phi_translation.middleRows<3>(3 * node); }
   /// Rotational mode shapes (3 x n) at a node.

@@ -111,6 +111,9 @@ typedef struct fs_motion_law {
 } fs_motion_law;
 
 fs_motion_law fs_law_polynomial(double s0, double v, double a);
+/* A clamped cubic spline through (t, s) rows, at rest at the first and last and held outside;
+ * two rows (t0, s0), (t1, s1) make the smooth step s0 + (s1 - s0)(3u^2 - 2u^3),
+ * u = (t - t0) / (t1 - t0). */
 fs_motion_law fs_law_table(const double* rows, int num_rows);
 fs_motion_law fs_law_callback(fs_motion_callback callback, void* user);
 fs_motion_law fs_law_input(int input);

@@ -207,6 +207,32 @@ TEST_CASE("a motion table that no step can follow is refused at setup, naming it
   CHECK(swapped.error().what().find("rows 2 and 3") != std::string::npos);
 }
 
+TEST_CASE("a table of two rows is the cubic smooth step, at rest at both ends") {
+  // The clamped spline through (t0, s0), (t1, s1) with zero end slopes is the Hermite cubic
+  // s0 + (s1 - s0) (3 u^2 - 2 u^3), u = (t - t0) / T: the smooth step a driver's ramp needs
+  // (the closed form is the reference).
+  const double t0 = 0.5, t1 = 2.0, s0 = -0.1, s1 = 0.3, period = t1 - t0, rise = s1 - s0;
+  const auto law = TableLaw<double>::create({t0, t1}, {s0, s1});
+  REQUIRE(law.ok());
+  for (int k = 0; k <= 30; ++k) {
+    const double t = t0 + period * k / 30.0, u = (t - t0) / period;
+    const MotionValue<double> m = (*law)(t);
+    CHECK(m.value == doctest::Approx(s0 + rise * (3 * u * u - 2 * u * u * u)).epsilon(1e-12));
+    CHECK(m.rate == doctest::Approx(rise * (6 * u - 6 * u * u) / period).epsilon(1e-12));
+    // The acceleration jumps at the ends (6 rise / T^2): the rows themselves read as held.
+    if (k > 0 && k < 30)
+      CHECK(m.acceleration ==
+            doctest::Approx(rise * (6 - 12 * u) / (period * period)).epsilon(1e-12));
+  }
+  // Held outside the table: the end values, at rest.
+  for (const double t : {0.0, 3.0}) {
+    const MotionValue<double> m = (*law)(t);
+    CHECK(m.value == (t < t0 ? s0 : s1));
+    CHECK(m.rate == 0.0);
+    CHECK(m.acceleration == 0.0);
+  }
+}
+
 TEST_CASE("a step too large for the motion says so before any state turns non-finite") {
   // The pendulum spun at 100 rad/s: steps of 0.1 and 0.03 s turn it by 10 and 3 rad. Not
   // split (max_step_halvings = 0), each such run ends in step_too_large with the state of the

@@ -137,15 +137,17 @@ inline void put3(const fsx::Vec3<double>& v, double* out) {
 }
 
 // A mistake the C layer finds while building (a file, a table), kept for finalize; the first
-// one counts, as in ModelBuilder. Returns FS_INVALID_HANDLE.
+// one counts, as in ModelBuilder, while fs_last_error tells this call's own. Returns
+// FS_INVALID_HANDLE.
 inline int record(fs_model_builder* b, const fsx::Error& e, const std::string& part) {
+  fsx::Error named = e;
+  named.message = part + ": " + e.message;
   if (!b->failed) {
     b->failed = true;
-    b->first_error = e;
-    b->first_error.message = part + ": " + e.message;
+    b->first_error = named;
   }
   b->error = b->first_error.what();
-  fail(status_of(e.code), b->error);
+  fail(status_of(e.code), named.what());
   return FS_INVALID_HANDLE;
 }
 

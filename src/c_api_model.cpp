@@ -13,6 +13,46 @@
 
 using namespace flexstress_c_api;
 
+namespace {
+
+// Damage meters (fs_builder_add_damage_meter*).
+
+fsx::Result<fsx::fatigue::SnCurve<double>> sn_curve(int curve, double category) {
+  using fsx::fatigue::IiwBeyondKnee;
+  switch (curve) {
+    case FS_SN_IIW_NORMAL_HAIBACH:
+      return fsx::fatigue::iiw_normal_curve(category, IiwBeyondKnee::haibach);
+    case FS_SN_IIW_NORMAL_SLOPE_22:
+      return fsx::fatigue::iiw_normal_curve(category, IiwBeyondKnee::slope_22);
+    case FS_SN_IIW_SHEAR_HAIBACH:
+      return fsx::fatigue::iiw_shear_curve(category, IiwBeyondKnee::haibach);
+    case FS_SN_IIW_SHEAR_SLOPE_22:
+      return fsx::fatigue::iiw_shear_curve(category, IiwBeyondKnee::slope_22);
+    case FS_SN_EN1993_NORMAL: return fsx::fatigue::en1993_normal_curve(category);
+    case FS_SN_EN1993_SHEAR: return fsx::fatigue::en1993_shear_curve(category);
+    default:
+      return fsx::make_error(fsx::ErrorCode::invalid_argument, "unknown S-N curve ", curve,
+                             " (fs_sn_curve: 0 to 5)");
+  }
+}
+
+int add_meter(fs_model_builder* b, const char* name, int output, int curve, double category,
+              double lower, double upper, double scale) {
+  const std::string part = std::string("meter '") + name + "'";
+  auto sn = sn_curve(curve, category);
+  if (!sn) return record(b, sn.error(), part);
+  auto model = fsx::fatigue::DamageModel<double>::create(*sn);
+  if (!model) return record(b, model.error(), part);
+  // DamageMeter's streaming counter has its class count fixed at compile time.
+  auto grid = fsx::fatigue::ClassGrid<double>::create(lower, upper, 128);
+  if (!grid) return record(b, grid.error(), part);
+  auto meter = fsx::DamageMeter<double>::create(*grid, 0, *model);
+  if (!meter) return record(b, meter.error(), part);
+  return b->builder.add_damage_meter(name, fsx::OutputId{output}, *meter, scale).index;
+}
+
+}  // namespace
+
 extern "C" {
 
 fs_motion_law fs_law_polynomial(double s0, double v, double a) {
@@ -266,16 +306,15 @@ int fs_builder_add_damage_meter(fs_model_builder* b, const char* name, int outpu
                                 double lower, double upper, double scale) {
   return guarded_handle("fs_builder_add_damage_meter", [&] {
     if (!b || !name) return null_argument("fs_builder_add_damage_meter"), FS_INVALID_HANDLE;
-    const std::string part = std::string("meter '") + name + "'";
-    auto curve = fsx::fatigue::iiw_normal_curve(fat, fsx::fatigue::IiwBeyondKnee::haibach);
-    if (!curve) return record(b, curve.error(), part);
-    auto model = fsx::fatigue::DamageModel<double>::create(*curve);
-    if (!model) return record(b, model.error(), part);
-    auto grid = fsx::fatigue::ClassGrid<double>::create(lower, upper, 128);
-    if (!grid) return record(b, grid.error(), part);
-    auto meter = fsx::DamageMeter<double>::create(*grid, 0, *model);
-    if (!meter) return record(b, meter.error(), part);
-    return b->builder.add_damage_meter(name, fsx::OutputId{output}, *meter, scale).index;
+    return add_meter(b, name, output, FS_SN_IIW_NORMAL_HAIBACH, fat, lower, upper, scale);
+  });
+}
+
+int fs_builder_add_damage_meter_curve(fs_model_builder* b, const char* name, int output, int curve,
+                                      double category, double lower, double upper, double scale) {
+  return guarded_handle("fs_builder_add_damage_meter_curve", [&] {
+    if (!b || !name) return null_argument("fs_builder_add_damage_meter_curve"), FS_INVALID_HANDLE;
+    return add_meter(b, name, output, curve, category, lower, upper, scale);
   });
 }
 

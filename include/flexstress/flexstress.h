@@ -192,6 +192,19 @@ int fs_builder_add_beam_fibre_stress(fs_model_builder* b, const char* name, int 
  * cycles, slope 3, Haibach slope 5 beyond the knee at 1e7). */
 int fs_builder_add_damage_meter(fs_model_builder* b, const char* name, int output, double fat,
                                 double lower, double upper, double scale);
+/* S-N curves of a damage meter (category: MPa at 2e6 cycles). */
+typedef enum fs_sn_curve {
+  FS_SN_IIW_NORMAL_HAIBACH = 0,  /* IIW normal stress: m = 3 to 1e7 cycles, then m = 5 */
+  FS_SN_IIW_NORMAL_SLOPE_22 = 1, /* IIW normal stress: m = 3 to 1e7 cycles, then m = 22 */
+  FS_SN_IIW_SHEAR_HAIBACH = 2,   /* IIW shear stress: m = 5 to 1e8 cycles, then m = 9 */
+  FS_SN_IIW_SHEAR_SLOPE_22 = 3,  /* IIW shear stress: m = 5 to 1e8 cycles, then m = 22 */
+  FS_SN_EN1993_NORMAL = 4,       /* EN 1993-1-9: m = 3 to 5e6, m = 5 to 1e8, cut-off below */
+  FS_SN_EN1993_SHEAR = 5         /* EN 1993-1-9: m = 5 to 1e8, cut-off below */
+} fs_sn_curve;
+/* A damage meter as fs_builder_add_damage_meter (128 classes over [lower, upper] of
+ * scale * output) with the S-N curve chosen (fs_sn_curve) for its category. */
+int fs_builder_add_damage_meter_curve(fs_model_builder* b, const char* name, int output, int curve,
+                                      double category, double lower, double upper, double scale);
 int fs_builder_add_input(fs_model_builder* b, const char* name);
 int fs_builder_set_gravity(fs_model_builder* b, const double gravity[3]);
 /* Integrator settings every data starts with: step (s; default 1e-3), spectral radius at

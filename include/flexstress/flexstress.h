@@ -181,15 +181,19 @@ long fs_builder_nearest_node(const fs_model_builder* b, int body, const double p
  * section (m, along its local y and z axes) at xi (0 at node_a, 1 at node_b) of the
  * Euler-Bernoulli beam between two nodes of the body's modal body file, E (u' - y v'' - z w'')
  * from their mode shapes (displacements and rotations). orientation: the section's local y axis
- * in the body frame (NULL: global y, or z for a beam along y). Errors name the node (one the
- * file does not have, or without rotations) or the value (xi outside [0, 1], E not positive).
- * Returns the output's handle. */
+ * in the body frame (NULL: global y, or z for a beam along y). node_a and node_b must be the
+ * two nodes of one beam element: the file does not record elements, and between other nodes the
+ * result is the stress of a single cubic through them, not the beam's. Errors name the node (one
+ * the file does not have, or without rotations) or the value (xi outside [0, 1], E not
+ * positive). Returns the output's handle. */
 int fs_builder_add_beam_fibre_stress(fs_model_builder* b, const char* name, int body, long node_a,
                                      long node_b, const double orientation[3],
                                      double youngs_modulus, double xi, double y, double z);
 /* A damage meter on an output: streaming rainflow on 128 classes over [lower, upper] of
  * scale * output (e.g. 1e-6 for Pa to MPa), damage by the IIW curve of class fat (MPa at 2e6
- * cycles, slope 3, Haibach slope 5 beyond the knee at 1e7). */
+ * cycles, slope 3, Haibach slope 5 beyond the knee at 1e7). Ranges count at their classes'
+ * centres: fit the window to the stress history (a window ten times too wide rounds a range to
+ * a few classes, and damage goes with the range to the power 3 to 5; docs/fatigue.md). */
 int fs_builder_add_damage_meter(fs_model_builder* b, const char* name, int output, double fat,
                                 double lower, double upper, double scale);
 /* S-N curves of a damage meter (category: MPa at 2e6 cycles). */

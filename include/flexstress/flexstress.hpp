@@ -60,6 +60,7 @@
 #include "flexstress/dynamics/step_settings.hpp"
 #include "flexstress/model/all.hpp"
 
+#include "flexstress/stress/beam_fibre_stress_modes.hpp"
 #include "flexstress/stress/deformed_shape.hpp"
 #include "flexstress/stress/fused_stress.hpp"
 #include "flexstress/stress/host_point.hpp"

@@ -90,6 +90,38 @@ TEST_CASE("runtime model: a hanging pendulum's reaction carries its weight") {
   CHECK(marker_frame(*m, d, top).origin.norm() < 1e-9);  // held at the pivot
 }
 
+TEST_CASE("runtime model: a driver's effort is what holds its body, with its sign") {
+  // Statics: a 10 kg rod of 1 m along +x from a hinge about z, held horizontal under gravity
+  // -y by a revolute driver, needs +m g L / 2 = +49.05 N m about +z; the same rod on a vertical
+  // slider along +y, held by a prismatic driver, needs +m g = +98.1 N along +y.
+  const double mass = 10.0, g = 9.81;
+  for (const bool turning : {true, false}) {
+    CAPTURE(turning);
+    ModelBuilder<double> b;
+    const BodyId rod =
+        b.add_rigid_body("rod", mass, Vector3d(0.5, 0, 0),
+                         Vector3d(1e-3, 1.0 / 12 * mass, 1.0 / 12 * mass).asDiagonal());
+    // Slider axes (columns): x along global z, y along global x, z_i along global +y.
+    const Matrix3d up = (Matrix3d() << 0, 1, 0, 0, 0, 1, 1, 0, 0).finished();
+    const MarkerId pivot = b.add_marker("pivot", b.ground(), -1, Vector3d::Zero(),
+                                        turning ? Matrix3d::Identity() : up);
+    const MarkerId root =
+        b.add_marker("root", rod, -1, Vector3d::Zero(), turning ? Matrix3d::Identity() : up);
+    b.add_joint("guide", turning ? JointKind::revolute : JointKind::prismatic, pivot, root);
+    const JointId drive =
+        b.add_driver("drive", turning ? JointKind::revolute_driver : JointKind::prismatic_driver,
+                     pivot, root, MotionLaw<double>::constant_acceleration(0.0));
+    b.set_gravity(Vector3d(0, -g, 0));
+    auto m = b.finalize();
+    REQUIRE_MESSAGE(m.ok(), m.error().what());
+    Data<double> d(*m);
+    REQUIRE(initialize(*m, d).ok());
+    for (int i = 0; i < 10; ++i) REQUIRE(step(*m, d) == StepStatus::ok);
+    const double expected = turning ? mass * g * 0.5 : mass * g;
+    CHECK(driver_effort(*m, d, drive) == doctest::Approx(expected).epsilon(1e-9));
+  }
+}
+
 TEST_CASE("runtime model: a driven crank follows its law; an input law reads set_input") {
   // A rigid bar on a revolute joint driven at 2 rad/s: after 1 s its x axis points at 2 rad.
   // The same drive as an input set before each step gives the same motion.

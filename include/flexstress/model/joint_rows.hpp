@@ -349,7 +349,9 @@ void evaluate_joint_rows(JointKind kind, const MarkerState<Scalar>& i, const Mar
       out.conv[0] -= law.acceleration;
       return;
     case JointKind::revolute_driver: {
-      // sin(phi) (x_i . x_j) - cos(phi) (y_i . x_j) = 0.
+      // cos(phi) (y_i . x_j) - sin(phi) (x_i . x_j) = sin(theta - phi) = 0 for the angle theta
+      // from x_i to x_j about z_i: it grows with theta, as the prismatic driver's with the
+      // stroke, so that both drivers' efforts are -lambda (readouts.hpp, driver_effort).
       using std::cos;
       using std::sin;
       const Scalar s = sin(law.value), c = cos(law.value);
@@ -358,16 +360,16 @@ void evaluate_joint_rows(JointKind kind, const MarkerState<Scalar>& i, const Mar
       const Scalar cdd = -c * law.rate * law.rate - s * law.acceleration;
       JointRows<Scalar> ab;
       ab.reset(2);
-      jr::perpendicular(i, 0, j, 0, ab, 0, true);  // x_i . x_j = cos(phi) when met
-      jr::perpendicular(i, 1, j, 0, ab, 1, true);  // y_i . x_j = sin(phi)
+      jr::perpendicular(i, 0, j, 0, ab, 0, true);  // x_i . x_j = cos(theta)
+      jr::perpendicular(i, 1, j, 0, ab, 1, true);  // y_i . x_j = sin(theta)
       const Scalar a_dot = jr::perpendicular_rate(i, 0, j, 0);
       const Scalar b_dot = jr::perpendicular_rate(i, 1, j, 0);
-      out.phi[0] = s * ab.phi[0] - c * ab.phi[1];
-      out.i[0] = RowSide<Scalar>::combine(s, ab.i[0], -c, ab.i[1]);
-      out.j[0] = RowSide<Scalar>::combine(s, ab.j[0], -c, ab.j[1]);
-      out.phi_t[0] = sd * ab.phi[0] - cd * ab.phi[1];
-      out.conv[0] = sdd * ab.phi[0] + Scalar(2) * sd * a_dot + s * ab.conv[0] - cdd * ab.phi[1] -
-                    Scalar(2) * cd * b_dot - c * ab.conv[1];
+      out.phi[0] = -(s * ab.phi[0] - c * ab.phi[1]);
+      out.i[0] = RowSide<Scalar>::combine(-s, ab.i[0], c, ab.i[1]);
+      out.j[0] = RowSide<Scalar>::combine(-s, ab.j[0], c, ab.j[1]);
+      out.phi_t[0] = -(sd * ab.phi[0] - cd * ab.phi[1]);
+      out.conv[0] = -(sdd * ab.phi[0] + Scalar(2) * sd * a_dot + s * ab.conv[0] - cdd * ab.phi[1] -
+                      Scalar(2) * cd * b_dot - c * ab.conv[1]);
       return;
     }
   }

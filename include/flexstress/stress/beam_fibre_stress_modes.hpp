@@ -22,7 +22,9 @@
 
 namespace flexstress::stress {
 
-/// Where on a beam between two nodes of a body, and which fibre.
+/// Where on a beam between two nodes of a body, and which fibre. The nodes are those of one
+/// beam element (body data record no elements: between other nodes the row is the stress of a
+/// single cubic through them, not the beam's).
 struct BeamFibre {
   Index node_a = -1, node_b = -1;
   /// The section's local y axis, projected normal to the beam (fe::BeamElement::orientation;

@@ -280,6 +280,23 @@ int fs_driver_effort(const fs_data* d, int joint, double* effort) {
   });
 }
 
+int fs_joint_coordinate(const fs_data* d, int joint, double* value, double* rate) {
+  return guarded("fs_joint_coordinate", [&] {
+    if (!d || !value || !rate) return null_argument("fs_joint_coordinate");
+    if (!in_range(joint, d->model->joints().size()))
+      return bad_handle("fs_joint_coordinate", "joint", joint);
+    const auto c = fsx::joint_coordinate(*d->model, d->data, fsx::JointId{joint});
+    if (!c.defined)
+      return fail(FS_ERROR_INVALID_ARGUMENT,
+                  "fs_joint_coordinate: " + d->model->describe_joint(joint) +
+                      " has no single coordinate (revolute or "
+                      "prismatic joints and drivers have one)");
+    *value = c.value;
+    *rate = c.rate;
+    return int(FS_OK);
+  });
+}
+
 int fs_energy_compute(fs_data* d, fs_energy* out) {
   return guarded("fs_energy_compute", [&] {
     if (!d || !out) return null_argument("fs_energy_compute");

@@ -312,6 +312,10 @@ int fs_joint_reaction(const fs_data* d, int joint, double force[3], double momen
  * marker i's +z, or the moment (revolute, N m) turning it about that axis.
  * FS_ERROR_INVALID_ARGUMENT for a joint that is not a driver. */
 int fs_driver_effort(const fs_data* d, int joint, double* effort);
+/* A revolute joint's (or revolute driver's) angle from x_i to x_j about z_i, in (-pi, pi], or a
+ * prismatic joint's (or prismatic driver's) stroke along z_i (m), and its rate, from the joint's
+ * markers as they are. FS_ERROR_INVALID_ARGUMENT for other kinds (no single coordinate). */
+int fs_joint_coordinate(const fs_data* d, int joint, double* value, double* rate);
 
 typedef struct fs_energy {
   double kinetic, gravity, elastic, springs, total;

@@ -323,6 +323,12 @@ static void check_drivers(void) {
   CHECK(fs_body_angular_velocity(d, crank, w) == FS_OK && fabs(w[2] - 0.5) < 1e-4);
   CHECK(fs_body_velocity(d, crank, v) == FS_OK && fabs(v[0]) < 1e-9);
   CHECK(fs_body_position(d, crank, x) == FS_OK && fabs(x[0]) < 1e-9);
+  /* The hinge's and the motor's own coordinate: 0.05 rad, turning at 0.5 rad/s. */
+  CHECK(fs_joint_coordinate(d, hinge, &x[0], &x[1]) == FS_OK);
+  CHECK(fabs(x[0] - 0.05) < 1e-6 && fabs(x[1] - 0.5) < 1e-4);
+  CHECK(fs_joint_coordinate(d, drive, &x[0], &x[1]) == FS_OK && fabs(x[0] - 0.05) < 1e-6);
+  CHECK(fs_joint_coordinate(d, 7, &x[0], &x[1]) == FS_ERROR_INVALID_HANDLE);
+  CHECK(fs_body_position(d, crank, x) == FS_OK);
   /* At a constant rate without gravity the motor exerts no moment; the hinge is no driver. */
   CHECK(fs_driver_effort(d, drive, &effort) == FS_OK && fabs(effort) < 1e-6);
   CHECK(fs_driver_effort(d, hinge, &effort) == FS_ERROR_INVALID_ARGUMENT);

@@ -91,12 +91,13 @@ TEST_CASE("runtime model: a hanging pendulum's reaction carries its weight") {
 }
 
 TEST_CASE("runtime model: a driver's effort is what holds its body, with its sign") {
-  // Statics: a 10 kg rod of 1 m along +x from a hinge about z, held horizontal under gravity
-  // -y by a revolute driver, needs +m g L / 2 = +49.05 N m about +z; the same rod on a vertical
-  // slider along +y, held by a prismatic driver, needs +m g = +98.1 N along +y.
+  // Statics: a 10 kg rod of 1 m along +x from a hinge about z, held by a revolute driver at
+  // 0.3 rad above the horizontal under gravity -y, needs +m g L / 2 cos(0.3) about +z; the same
+  // rod on a vertical slider along +y, held by a prismatic driver, needs +m g along +y.
   const double mass = 10.0, g = 9.81;
   for (const bool turning : {true, false}) {
     CAPTURE(turning);
+    const double held = turning ? 0.3 : 0.25;  // rad, m
     ModelBuilder<double> b;
     const BodyId rod =
         b.add_rigid_body("rod", mass, Vector3d(0.5, 0, 0),
@@ -110,15 +111,19 @@ TEST_CASE("runtime model: a driver's effort is what holds its body, with its sig
     b.add_joint("guide", turning ? JointKind::revolute : JointKind::prismatic, pivot, root);
     const JointId drive =
         b.add_driver("drive", turning ? JointKind::revolute_driver : JointKind::prismatic_driver,
-                     pivot, root, MotionLaw<double>::constant_acceleration(0.0));
+                     pivot, root, MotionLaw<double>::constant_acceleration(held));
     b.set_gravity(Vector3d(0, -g, 0));
     auto m = b.finalize();
     REQUIRE_MESSAGE(m.ok(), m.error().what());
     Data<double> d(*m);
-    REQUIRE(initialize(*m, d).ok());
-    for (int i = 0; i < 10; ++i) REQUIRE(step(*m, d) == StepStatus::ok);
-    const double expected = turning ? mass * g * 0.5 : mass * g;
+    StaticEquilibriumOptions tight;  // the multipliers converge with the corrections
+    tight.tolerance = 1e-13;
+    REQUIRE(solve_static_equilibrium(*m, d, tight).ok());
+    const double expected = turning ? mass * g * 0.5 * std::cos(held) : mass * g;
     CHECK(driver_effort(*m, d, drive) == doctest::Approx(expected).epsilon(1e-9));
+    const JointCoordinate<double> c = joint_coordinate(*m, d, drive);
+    CHECK(c.value == doctest::Approx(held).epsilon(1e-12));
+    CHECK(std::abs(c.rate) < 1e-9);
   }
 }
 
@@ -131,11 +136,11 @@ TEST_CASE("runtime model: a driven crank follows its law; an input law reads set
         b.add_rigid_body("bar", 1.0, Vector3d(0.5, 0, 0), Vector3d(1e-3, 0.1, 0.1).asDiagonal());
     const MarkerId g = b.add_marker("ground", b.ground(), -1, Vector3d::Zero());
     const MarkerId e = b.add_marker("bar end", bar, -1, Vector3d::Zero());
-    b.add_joint("pin", JointKind::revolute, g, e);
+    const JointId pin = b.add_joint("pin", JointKind::revolute, g, e);
     const InputId angle = b.add_input("crank angle");
     const auto law = from_input ? MotionLaw<double>::from_input(angle)
                                 : MotionLaw<double>::constant_acceleration(0.0, 2.0);
-    b.add_driver("crank", JointKind::revolute_driver, g, e, law);
+    const JointId crank = b.add_driver("crank", JointKind::revolute_driver, g, e, law);
     b.set_gravity(Vector3d(0, -9.81, 0));
     auto m = b.finalize();
     REQUIRE(m.ok());
@@ -154,6 +159,13 @@ TEST_CASE("runtime model: a driven crank follows its law; an input law reads set
       REQUIRE(step(*m, d) == StepStatus::ok);
     }
     const Vector3d x = rotation_matrix<double>(body_orientation(*m, d, bar)).col(0);
+    // The joints' own coordinate: the pin's and the driver's angle, turning at 2 rad/s.
+    for (const JointId joint : {pin, crank}) {
+      const JointCoordinate<double> c = joint_coordinate(*m, d, joint);
+      CHECK(c.defined);
+      CHECK(c.value == doctest::Approx(std::atan2(x.y(), x.x())).epsilon(1e-12));
+      CHECK(c.rate == doctest::Approx(2.0).epsilon(1e-8));
+    }
     return std::atan2(x.y(), x.x());
   };
   const double by_law = run(false), by_input = run(true);

@@ -275,6 +275,44 @@ Scalar driver_effort(const Model<Scalar>& m, const Data<Scalar>& d, JointId id) 
   return is_driver(j.kind) ? -d.lambda(j.row) : Scalar(0);
 }
 
+/// A joint's own coordinate and its rate at the state, from its markers as they are.
+template <class Scalar>
+struct JointCoordinate {
+  bool defined = false;  ///< only revolute and prismatic joints and their drivers have one
+  Scalar value = Scalar(0), rate = Scalar(0);
+};
+
+/// A revolute joint's (or revolute driver's) angle from x_i to x_j about z_i, in (-pi, pi], or
+/// a prismatic joint's (or prismatic driver's) stroke (r_j - r_i) . z_i, with its rate: for a
+/// flexible body's marker the node's own turning or travel, elastic wobble included (a
+/// driver's law is what the coordinate is held to).
+template <class Scalar>
+JointCoordinate<Scalar> joint_coordinate(const Model<Scalar>& m, const Data<Scalar>& d,
+                                         JointId id) {
+  const auto& j = m.joint(id);
+  JointCoordinate<Scalar> c;
+  const bool turning = j.kind == JointKind::revolute || j.kind == JointKind::revolute_driver;
+  const bool sliding = j.kind == JointKind::prismatic || j.kind == JointKind::prismatic_driver;
+  if (!turning && !sliding) return c;
+  const MarkerState<Scalar> mi = marker_state(m, d, MarkerId{j.marker_i});
+  const MarkerState<Scalar> mj = marker_state(m, d, MarkerId{j.marker_j});
+  c.defined = true;
+  if (turning) {  // theta = atan2(y_i . x_j, x_i . x_j)
+    const Scalar a = mi.x.value.dot(mj.x.value), b = mi.y.value.dot(mj.x.value);
+    const Scalar a_dot = mi.x.velocity.dot(mj.x.value) + mi.x.value.dot(mj.x.velocity);
+    const Scalar b_dot = mi.y.velocity.dot(mj.x.value) + mi.y.value.dot(mj.x.velocity);
+    using std::atan2;
+    c.value = atan2(b, a);
+    c.rate = (a * b_dot - b * a_dot) / (a * a + b * b);
+  } else {
+    const Vec3<Scalar> r = mj.origin.value - mi.origin.value;
+    c.value = r.dot(mi.z.value);
+    c.rate = Vec3<Scalar>(mj.origin.velocity - mi.origin.velocity).dot(mi.z.value) +
+             r.dot(mi.z.velocity);
+  }
+  return c;
+}
+
 /// A joint's equations at the last evaluation (evaluate() or a step): Phi, Phi_t, the
 /// convective term (the time derivative of B v + Phi_t without B v_dot) and its rows of B
 /// (equations x the model's velocities; zero outside its two bodies).

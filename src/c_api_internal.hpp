@@ -19,6 +19,7 @@
 #include "flexstress/fatigue/sn_curve.hpp"
 #include "flexstress/model/all.hpp"
 #include "flexstress/reduction/modal_body_io.hpp"
+#include "flexstress/reduction/modal_geometric_stiffness_io.hpp"
 #include "flexstress/stress/beam_fibre_stress_modes.hpp"
 #include "flexstress/version.hpp"
 
@@ -26,10 +27,12 @@ namespace fsx = flexstress;
 
 struct fs_model_builder {
   fsx::ModelBuilder<double> builder;
-  // The modal body data of each flexible body by handle, and its mode count: rows of stress
-  // outputs are made from it (fs_builder_add_beam_fibre_stress).
+  // The modal body data of each flexible body by handle, its name and mode count: rows of
+  // stress outputs are made from it (fs_builder_add_beam_fibre_stress), and a geometric
+  // stiffness file is checked against it (fs_builder_add_geometric_stiffening).
   struct FlexibleBody {
     int body = -1;
+    std::string name;
     int modes = 0;
     std::shared_ptr<const fsx::reduction::ModalBodyData> data;
   };

@@ -133,7 +133,8 @@ int fs_builder_add_flexible_body(fs_model_builder* b, const char* name, const ch
     if (!data) return record(b, data.error(), std::string("body '") + name + "'");
     const int body = b->builder.add_flexible_body(name, *data, modes).index;
     b->flexible_bodies.push_back(
-        {body, modes, std::make_shared<const fsx::reduction::ModalBodyData>(std::move(*data))});
+        {body, name, modes,
+         std::make_shared<const fsx::reduction::ModalBodyData>(std::move(*data))});
     return body;
   });
 }
@@ -142,6 +143,27 @@ int fs_builder_set_damping_ratio(fs_model_builder* b, int body, double zeta) {
   return guarded("fs_builder_set_damping_ratio", [&] {
     if (!b) return null_argument("fs_builder_set_damping_ratio");
     b->builder.set_damping_ratio(fsx::BodyId{body}, zeta);
+    return int(FS_OK);
+  });
+}
+
+int fs_builder_add_geometric_stiffening(fs_model_builder* b, int body, const char* path) {
+  return guarded("fs_builder_add_geometric_stiffening", [&] {
+    if (!b || !path) return null_argument("fs_builder_add_geometric_stiffening");
+    const auto found = std::find_if(b->flexible_bodies.begin(), b->flexible_bodies.end(),
+                                    [&](const auto& f) { return f.body == body; });
+    if (found == b->flexible_bodies.end()) {
+      // Not a flexible body: the C++ builder names it (a rigid body, or a bad handle).
+      b->builder.add_geometric_stiffening(fsx::BodyId{body},
+                                          fsx::reduction::ModalGeometricStiffness{});
+      return int(FS_OK);
+    }
+    auto g = fsx::reduction::load_geometric_stiffness(path, *found->data);
+    if (!g) {
+      record(b, g.error(), "body '" + found->name + "'");
+      return status_of(g.error().code);
+    }
+    b->builder.add_geometric_stiffening(fsx::BodyId{body}, *g);
     return int(FS_OK);
   });
 }

@@ -140,6 +140,13 @@ int fs_builder_add_rigid_body(fs_model_builder* b, const char* name, double mass
 int fs_builder_add_flexible_body(fs_model_builder* b, const char* name, const char* path,
                                  int modes);
 int fs_builder_set_damping_ratio(fs_model_builder* b, int body, double zeta);
+/* Geometric stiffening of a flexible body by its own inertial and gravity loads (what a
+ * fast-spinning blade needs: without it, a blade spinning faster than its lowest in-plane
+ * frequency bends away), from a geometric stiffness file saved for the body's modal body file
+ * (flexstress/reduction/modal_geometric_stiffness_io.hpp). Returns FS_OK, or the file's error
+ * (FS_ERROR_IO, FS_ERROR_BAD_FILE_FORMAT: also a file saved for another body), which finalize
+ * then reports; a rigid body is an error at finalize. */
+int fs_builder_add_geometric_stiffening(fs_model_builder* b, int body, const char* path);
 /* Where a body's frame starts; orientation may be NULL (identity). */
 int fs_builder_set_initial_pose(fs_model_builder* b, int body, const double position[3],
                                 const double orientation[4]);

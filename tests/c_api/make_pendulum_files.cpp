@@ -1,8 +1,10 @@
-// Writes the inputs of the C interface's pendulum test (test_c_flexible_pendulum.c): a hinged
-// beam's modal body file, and its reference frequencies from the full FE model (the kernel,
-// no reduction), which the C test must reproduce through the interface alone.
+// Writes the inputs of the C interface's tests (test_c_flexible_pendulum.c,
+// test_c_spinning_beam.c): a hinged beam's modal body file and its geometric stiffness file,
+// and its reference frequencies from the full FE model (the kernel, no reduction), which the
+// C test must reproduce through the interface alone.
 //
-//   make_pendulum_files <dir>  ->  <dir>/beam.fsmodal, <dir>/beam_reference.txt
+//   make_pendulum_files <dir>  ->  <dir>/beam.fsmodal, <dir>/beam.fsgeom,
+//                                  <dir>/beam_reference.txt
 //
 // The beam: 2 m steel RHS 40 x 20 x 2 mm along x, 24 elements, reduced by Craig-Bampton with
 // its x = 0 node as interface and 16 fixed-interface modes (tests/model/test_model_equilibrium).
@@ -14,6 +16,8 @@
 #include <flexstress/fe/eigen_solver.hpp>
 #include <flexstress/reduction/modal_body_data.hpp>
 #include <flexstress/reduction/modal_body_io.hpp>
+#include <flexstress/reduction/modal_geometric_stiffness.hpp>
+#include <flexstress/reduction/modal_geometric_stiffness_io.hpp>
 
 int main(int argc, char** argv) {
   using namespace flexstress;
@@ -42,6 +46,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (const Status s = reduction::save_modal_body(*data, dir + "/beam.fsmodal"); !s.ok()) {
+    std::fprintf(stderr, "%s\n", s.error().what().c_str());
+    return 1;
+  }
+  // Geometric stiffening: the stress of the inertial loads, reacted at the clamped root.
+  auto geometric =
+      reduction::modal_geometric_stiffness(mesh, *data, reduction::clamp_interface_nodes(*data));
+  if (!geometric) {
+    std::fprintf(stderr, "geometric stiffness: %s\n", geometric.error().what().c_str());
+    return 1;
+  }
+  if (const Status s = reduction::save_geometric_stiffness(*geometric, *data, dir + "/beam.fsgeom");
+      !s.ok()) {
     std::fprintf(stderr, "%s\n", s.error().what().c_str());
     return 1;
   }
@@ -80,7 +96,7 @@ int main(int argc, char** argv) {
                static_cast<long>(line.nodes[1]), mesh.material(spec.material).youngs_modulus,
                section.iz, section.half_height_y);
   std::fclose(f);
-  std::printf("wrote %s/beam.fsmodal and %s (first FE frequencies %g, %g, %g Hz)\n", dir.c_str(),
-              path.c_str(), hz(0), hz(1), hz(2));
+  std::printf("wrote %s/beam.fsmodal, beam.fsgeom and %s (first FE frequencies %g, %g, %g Hz)\n",
+              dir.c_str(), path.c_str(), hz(0), hz(1), hz(2));
   return 0;
 }

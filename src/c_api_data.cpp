@@ -105,6 +105,7 @@ int fs_settings_get(const fs_data* d, fs_settings* out) {
   out->velocity_drift_limit = s.velocity_drift_limit;
   out->project_velocities = s.project_velocities ? 1 : 0;
   out->newton_error_estimate_fraction = s.newton_error_estimate_fraction;
+  out->keep_stalled_steps = s.keep_stalled_steps ? 1 : 0;
   return FS_OK;
 }
 
@@ -123,6 +124,7 @@ int fs_settings_set(fs_data* d, const fs_settings* in) {
     s.velocity_drift_limit = in->velocity_drift_limit;
     s.project_velocities = in->project_velocities != 0;
     s.newton_error_estimate_fraction = in->newton_error_estimate_fraction;
+    s.keep_stalled_steps = in->keep_stalled_steps != 0;
     const fsx::Status st = fsx::set_settings(*d->model, d->data, s);
     if (!st.ok()) return fail(FS_ERROR_INVALID_ARGUMENT, "fs_settings_set: " + st.error().what());
     return int(FS_OK);
@@ -328,6 +330,7 @@ int fs_statistics_get(const fs_data* d, fs_statistics* out) {
   out->above_error_tolerance = s.above_error_tolerance;
   out->last_iterations = s.last_iterations;
   out->last_correction = s.last_correction;
+  out->stalled_steps = s.stalled_steps;
   return FS_OK;
 }
 

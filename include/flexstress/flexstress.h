@@ -95,7 +95,7 @@ typedef enum fs_law_kind {
   FS_LAW_POLYNOMIAL = 0, /* s = c[0] + c[1] t + c[2] t^2 / 2 */
   FS_LAW_TABLE = 1,      /* clamped cubic spline through rows (t, s), t increasing */
   FS_LAW_CALLBACK = 2,
-  FS_LAW_INPUT = 3 /* the value set by fs_set_input before each step */
+  FS_LAW_INPUT = 3 /* set by fs_set_input before each step, for the step's end (t + step) */
 } fs_law_kind;
 
 /* A motion law; make one with the fs_law_* functions. Tables are copied when the law is used
@@ -278,6 +278,8 @@ typedef struct fs_settings {
   double velocity_drift_limit;            /* projects drifting velocities; 0: never */
   int project_velocities;                 /* 1: after every step */
   double newton_error_estimate_fraction;  /* in [0, 1]: stop on the estimated error; 0: off */
+  int keep_stalled_steps; /* 1 (default): a step whose Newton stalled at the limit within the
+                           * joints' tolerance (a singular configuration) is kept */
 } fs_settings;
 int fs_settings_get(const fs_data* d, fs_settings* out);
 int fs_settings_set(fs_data* d, const fs_settings* settings);
@@ -286,6 +288,9 @@ double fs_time(const fs_data* d); /* s; NaN for a null data */
 /* Runtime changes: an input's value for the next steps, a joint switched on or off (the next
  * step restarts from the state, projecting it), a driver's law (if its value or rate differs
  * from the old law's at the current time, call fs_initialize before stepping). */
+/* An input's value, rate and acceleration for the end of the next step (fs_time + step; before
+ * fs_initialize, for fs_time). Within a step split in pieces it follows the quintic through its
+ * values, rates and accelerations at the step's two ends. */
 int fs_set_input(fs_data* d, int input, double value, double rate, double acceleration);
 int fs_set_joint_active(fs_data* d, int joint, int active);
 int fs_set_law(fs_data* d, int joint, const fs_motion_law* law);
@@ -340,6 +345,7 @@ typedef struct fs_statistics {
   long long above_error_tolerance; /* smallest pieces kept above the local error tolerance */
   int last_iterations;
   double last_correction; /* the last step's final correction over its tolerance (<= 1: met) */
+  long long stalled_steps; /* of over_budget, kept with Newton stalled (keep_stalled_steps) */
 } fs_statistics;
 int fs_statistics_get(const fs_data* d, fs_statistics* out);
 

@@ -2,7 +2,9 @@
 // (Gonzalez, Dopico, Lugris, Cuadrado, Multibody Syst. Dyn. 16 (2006) 179-190: point mass 1 kg
 // on a massless 1 m link, g = 9.81, released from rest horizontal; period
 // 4 sqrt(L/g) K(1/sqrt 2) = 2.367842 s), the statics of a hanging mass, and conservation.
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <doctest/doctest.h>
 
@@ -127,23 +129,43 @@ TEST_CASE("runtime model: a driver's effort is what holds its body, with its sig
   }
 }
 
+// A rigid bar on a revolute joint at the origin under gravity, turned by a revolute driver
+// with `law`, or with the input 'crank angle' (from_input).
+struct Crank {
+  Model<double> model;
+  BodyId bar;
+  JointId pin, crank;
+  InputId angle;
+};
+
+Crank make_crank(bool from_input, const MotionLaw<double>& law,
+                 double local_error_tolerance = ImplicitSettings<double>().local_error_tolerance) {
+  ModelBuilder<double> b;
+  Crank c;
+  c.bar = b.add_rigid_body("bar", 1.0, Vector3d(0.5, 0, 0), Vector3d(1e-3, 0.1, 0.1).asDiagonal());
+  const MarkerId g = b.add_marker("ground", b.ground(), -1, Vector3d::Zero());
+  const MarkerId e = b.add_marker("bar end", c.bar, -1, Vector3d::Zero());
+  c.pin = b.add_joint("pin", JointKind::revolute, g, e);
+  c.angle = b.add_input("crank angle");
+  c.crank = b.add_driver("crank", JointKind::revolute_driver, g, e,
+                         from_input ? MotionLaw<double>::from_input(c.angle) : law);
+  b.set_gravity(Vector3d(0, -9.81, 0));
+  b.settings().local_error_tolerance = local_error_tolerance;
+  auto m = b.finalize();
+  REQUIRE(m.ok());
+  c.model = std::move(*m);
+  return c;
+}
+
 TEST_CASE("runtime model: a driven crank follows its law; an input law reads set_input") {
   // A rigid bar on a revolute joint driven at 2 rad/s: after 1 s its x axis points at 2 rad.
   // The same drive as an input set before each step gives the same motion.
   const auto run = [](bool from_input) {
-    ModelBuilder<double> b;
-    const BodyId bar =
-        b.add_rigid_body("bar", 1.0, Vector3d(0.5, 0, 0), Vector3d(1e-3, 0.1, 0.1).asDiagonal());
-    const MarkerId g = b.add_marker("ground", b.ground(), -1, Vector3d::Zero());
-    const MarkerId e = b.add_marker("bar end", bar, -1, Vector3d::Zero());
-    const JointId pin = b.add_joint("pin", JointKind::revolute, g, e);
-    const InputId angle = b.add_input("crank angle");
-    const auto law = from_input ? MotionLaw<double>::from_input(angle)
-                                : MotionLaw<double>::constant_acceleration(0.0, 2.0);
-    const JointId crank = b.add_driver("crank", JointKind::revolute_driver, g, e, law);
-    b.set_gravity(Vector3d(0, -9.81, 0));
-    auto m = b.finalize();
-    REQUIRE(m.ok());
+    const Crank c = make_crank(from_input, MotionLaw<double>::constant_acceleration(0.0, 2.0));
+    const Model<double>* m = &c.model;
+    const BodyId bar = c.bar;
+    const JointId pin = c.pin, crank = c.crank;
+    const InputId angle = c.angle;
     Data<double> d(*m);
     if (from_input) {
       CHECK_FALSE(initialize(*m, d).ok());  // the input was never set
@@ -171,6 +193,57 @@ TEST_CASE("runtime model: a driven crank follows its law; an input law reads set
   const double by_law = run(false), by_input = run(true);
   CHECK(by_law == doctest::Approx(2.0).epsilon(1e-8));
   CHECK(by_input == doctest::Approx(by_law).epsilon(1e-12));
+}
+
+// The crank's law s(t) = 0.5 sin(5 t) for the callback law below.
+static void swinging_law(double t, double out[3], void*) {
+  out[0] = 0.5 * std::sin(5 * t);
+  out[1] = 2.5 * std::cos(5 * t);
+  out[2] = -12.5 * std::sin(5 * t);
+}
+
+TEST_CASE("runtime model: an input law in the pieces of a split step follows its step's span") {
+  // set_input gives the input for the end of the step. A step split in pieces evaluates the
+  // driver before that end; the input then follows the quintic through its value, rate and
+  // acceleration at the step's two ends, as a law evaluated there would. Every step is split
+  // here (a local error tolerance of 1e-12, 16 pieces a step), and the input-driven crank's
+  // effort must match the same law given as a callback (the quintic is exact to O((5 h)^6)
+  // for sin(5 t)). What is left between the two is the multipliers' own noise: in pieces of
+  // 62.5 us they are determined to about alpha times the Newton tolerance, 1e-4 of the effort
+  // here. Held at the end's value, the input made each first piece jump by the whole step,
+  // and the effort was off by 1e4 times its size.
+  const auto run = [](bool from_input) {
+    const Crank c =
+        make_crank(from_input, MotionLaw<double>::from_callback(&swinging_law, nullptr), 1e-12);
+    const Model<double>* m = &c.model;
+    const JointId crank = c.crank;
+    const InputId angle = c.angle;
+    Data<double> d(*m);
+    const auto feed = [&](double t) {
+      double s[3];
+      swinging_law(t, s, nullptr);
+      if (from_input) REQUIRE(set_input(*m, d, angle, s[0], s[1], s[2]) == StepStatus::ok);
+    };
+    feed(0.0);
+    REQUIRE(initialize(*m, d).ok());
+    std::vector<double> effort;
+    for (int i = 0; i < 300; ++i) {
+      feed(d.t + d.settings.step);
+      REQUIRE(step(*m, d) == StepStatus::ok);
+      effort.push_back(driver_effort(*m, d, crank));
+    }
+    CHECK(d.statistics.split_steps == 300);
+    return effort;
+  };
+  const std::vector<double> by_callback = run(false), by_input = run(true);
+  double largest = 0, difference = 0;
+  for (std::size_t k = 0; k < by_callback.size(); ++k) {
+    largest = std::max(largest, std::abs(by_callback[k]));
+    difference = std::max(difference, std::abs(by_input[k] - by_callback[k]));
+  }
+  MESSAGE("driver effort up to " << largest << " N m, input against callback " << difference);
+  CHECK(largest > 1.0);
+  CHECK(difference <= 1e-3 * largest);
 }
 
 TEST_CASE("runtime model: setup errors name the part") {

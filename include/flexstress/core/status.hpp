@@ -165,8 +165,9 @@ enum class StepStatus : std::uint8_t {
   invalid_input,               ///< A sample or command was NaN/infinite; nothing was changed.
   capacity_exceeded,           ///< A bounded buffer is full; nothing was lost, nothing was added.
   step_too_large,  ///< The implicit corrector diverged from a finite state; the step was not taken.
-  /// With a Newton budget (accept_at_iteration_limit): the step was kept at its iteration limit
-  /// without converging; StepStatistics::last_correction says how far from converged it is.
+  /// With a Newton budget (accept_at_iteration_limit), or with Newton stalled within the joints'
+  /// tolerance (keep_stalled_steps): the step was kept at its iteration limit without
+  /// converging; StepStatistics::last_correction says how far from converged it is.
   budget_reached,
 };
 

@@ -62,11 +62,23 @@ struct ImplicitSettings {
   Scalar penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e2) : Scalar(1e3);
   /// The largest penalty factor a step raises penalty_factor to where the multipliers converge
   /// slowly: tenfold after two corrections with a fresh matrix that each shrank by less than
-  /// half on constraints already met; the next step starts from penalty_factor again
-  /// (penalty_factor or less: never raised). Near a singular configuration (the 40-bar chain)
-  /// it saves a third of the iterations; away from one it does not act. Above about 1e5 the
-  /// round-off of alpha Phi on coordinates of tens of metres exceeds the correction tolerance.
+  /// half on constraints already met. A raised penalty stays for the next step while steps
+  /// keep raising it, then falls tenfold per step back to penalty_factor (penalty_factor or
+  /// less: never raised). Near a singular configuration (the 40-bar chain) it saves a third of
+  /// the iterations; away from one it does not act. Above about 1e5 the round-off of alpha Phi
+  /// on coordinates of tens of metres exceeds the correction tolerance.
   Scalar max_penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e4) : Scalar(1e5);
+  /// Keep a step that reaches max_iterations with Newton stalled short of its tolerance but
+  /// within the joints': its last correction, made with a fresh matrix, shrank by less than
+  /// half, and it and the constraint violation are within violation_limit. More iterations would
+  /// not move such a state by more than a joint may be off: Newton is at the round-off of the
+  /// equations, or at a singular configuration, where the Jacobian has lost rank and the constraint
+  /// forces in the lost directions are not determined (no iteration settles them). The step returns
+  /// budget_reached (counted in StepStatistics::over_budget and stalled_steps; last_correction says
+  /// how far from the tolerance), its velocities projected onto the joints with ten times
+  /// projection_iterations, and the next step does not extrapolate its multipliers. How the
+  /// 40-bar chain passes its singular configurations on the defaults (docs/dynamics.md).
+  bool keep_stalled_steps = true;
   bool reuse_factorization = true;
   /// Refactorize when a correction shrinks by less than this factor (stale matrix): at once
   /// from the third correction on; when it is the second, at the start of the next step,
@@ -211,6 +223,7 @@ struct StepStatistics {
   int last_iterations = 0;
   int last_factorizations = 0;
   long over_budget = 0;        ///< steps kept at the iteration limit (accept_at_iteration_limit)
+  long stalled_steps = 0;      ///< of those, kept with Newton stalled (keep_stalled_steps)
   long drift_projections = 0;  ///< projections made because the velocities drifted
   long split_steps = 0;        ///< steps retried in pieces (max_step_halvings)
   long substeps = 0;           ///< the pieces those steps took

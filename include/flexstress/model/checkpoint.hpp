@@ -4,7 +4,7 @@
 // bit for bit; a restore into a model that differs fails and says what differs (the first body,
 // joint, force, input or output set whose kind, size or parameters are not the checkpoint's).
 //
-// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 8, signature 0): the
+// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 9, signature 0): the
 // model description (entries of a label, a summary and a hash of the part's parameters), then
 // the Data. A callback law cannot be saved: the checkpoint records that there was one, and the
 // restoring Data must hold a callback law in that place (its own function is kept).
@@ -38,7 +38,7 @@ struct ModelPart {
 
 namespace checkpoint_model_detail {
 
-inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 8, "model checkpoint"};
+inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 9, "model checkpoint"};
 
 template <class T>
 void put_raw(binary::Writer& w, const T& x) {
@@ -215,6 +215,7 @@ Result<std::vector<unsigned char>> save_checkpoint(const Model<Scalar>& m, const
     }
   }
   for (const auto& in : d.inputs) put_raw(w, in);
+  for (const auto& in : d.inputs_start) put_raw(w, in);
   for (unsigned char s : d.input_set) w.put(s);
   w.put(d.revision);
   for (const auto& f : d.force_states) put_raw(w, f);
@@ -240,6 +241,7 @@ Result<std::vector<unsigned char>> save_checkpoint(const Model<Scalar>& m, const
   w.put(in.h);
   w.put(in.revision);
   w.put(in.penalty);
+  w.put(in.penalty_boost);
   w.put(in.acceleration_scale);
   put_vector(w, in.vd_prev);
   put_vector(w, in.lambda_last);
@@ -333,6 +335,7 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
     law = std::move(restored);
   }
   for (auto& in : next.inputs) ok = ok && get_raw(r, in);
+  for (auto& in : next.inputs_start) ok = ok && get_raw(r, in);
   for (auto& s : next.input_set) ok = ok && r.get(s);
   ok = ok && r.get(next.revision);
   for (auto& f : next.force_states) ok = ok && get_raw(r, f);
@@ -357,8 +360,8 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
   std::int32_t converged = 0, piece_level = 0, backoff = 0, fresh_starts = 0;
   Scalar piece = 0;
   ok = ok && r.get(converged) && r.get(piece_level) && r.get(backoff) && r.get(fresh_starts) &&
-       r.get(piece) && r.get(in.revision) && r.get(in.penalty) && r.get(in.acceleration_scale) &&
-       get_vector(r, in.vd_prev) && get_vector(r, in.lambda_last) &&
+       r.get(piece) && r.get(in.revision) && r.get(in.penalty) && r.get(in.penalty_boost) &&
+       r.get(in.acceleration_scale) && get_vector(r, in.vd_prev) && get_vector(r, in.lambda_last) &&
        get_vector(r, in.lambda_increment);
   if (ok) {
     set_step_size(next, next.settings.step);  // the step's constants (clears the factorization)
@@ -373,6 +376,8 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
     in.have_factorization = flags[2] != 0;
     in.predict_linear = flags[3] != 0;
     in.converged_multipliers = converged < 0 ? 0 : converged > 2 ? 2 : converged;
+    if (!(in.penalty_boost >= Scalar(1) && std::isfinite(in.penalty_boost)))
+      in.penalty_boost = Scalar(1);
     const int limit = std::max(1, next.settings.refactor_backoff_limit);
     in.reuse_backoff = std::clamp(static_cast<int>(backoff), 0, limit);
     in.fresh_starts_left = std::clamp(static_cast<int>(fresh_starts), 0, limit);

@@ -18,6 +18,7 @@
 #include "flexstress/dynamics/step_settings.hpp"
 #include "flexstress/model/joint_rows.hpp"
 #include "flexstress/model/model.hpp"
+#include "flexstress/model/motion_law.hpp"
 
 namespace flexstress {
 
@@ -36,9 +37,13 @@ struct Data {
 
   // ---- runtime changes (by handle: set_joint_active, set_law, set_input) ------------------
   std::vector<unsigned char> joint_active;
-  std::vector<MotionLaw<Scalar>> laws;        ///< the drivers' current laws
-  std::vector<MotionValue<Scalar>> inputs;    ///< by InputId
-  std::vector<unsigned char> input_set;       ///< whether set_input was called for it
+  std::vector<MotionLaw<Scalar>> laws;      ///< the drivers' current laws
+  std::vector<MotionValue<Scalar>> inputs;  ///< by InputId: for the end of the next step
+  std::vector<unsigned char> input_set;     ///< whether set_input was called for it
+  /// The inputs at the start of the step (the last step's end, or initialize()), and the
+  /// step's span [input_t0, input_t1]: within it an input law is interpolated (input_value).
+  std::vector<MotionValue<Scalar>> inputs_start;
+  Scalar input_t0 = 0, input_t1 = 0;
   std::vector<MarkerAnchor<Scalar>> anchors;  ///< by marker slot (anchor_joint_at)
   std::uint64_t revision = 0;                 ///< counts runtime changes to the topology
   /// Internal states of the force elements (hydraulic chamber pressures), by ForceId: the
@@ -144,6 +149,8 @@ struct Data {
     laws = model.laws();
     inputs.assign(model.inputs().size(), MotionValue<Scalar>());
     input_set.assign(model.inputs().size(), 0);
+    inputs_start = inputs;
+    input_t0 = input_t1 = Scalar(0);
     anchors.assign(static_cast<std::size_t>(model.num_marker_slots()), MarkerAnchor<Scalar>());
     revision = 0;
     force_states.clear();
@@ -197,5 +204,56 @@ struct Data {
     message.fill('\0');
   }
 };
+
+/// Input k at time t. set_input gives an input's value, rate and acceleration for the end of
+/// the next step; where a step is evaluated before its end (the pieces of a split step, the
+/// stages of an explicit step) the input follows the quintic through its values, rates and
+/// accelerations at the step's start and end, as a law evaluated there would (held at the
+/// end's, an input would jump by the whole step at the first piece).
+template <class Scalar>
+MotionValue<Scalar> input_value(const Data<Scalar>& d, int k, Scalar t) {
+  const auto& end = d.inputs[static_cast<std::size_t>(k)];
+  const Scalar span = d.input_t1 - d.input_t0;
+  if (!(span > Scalar(0)) || !(t < d.input_t1)) return end;
+  const auto& start = d.inputs_start[static_cast<std::size_t>(k)];
+  // s(tau) = sum c_i tau^i on [0, span], matching value, rate and acceleration at both ends.
+  const Scalar h = span, tau = std::max(Scalar(0), t - d.input_t0);
+  const Scalar gap = end.value - start.value - start.rate * h - start.acceleration * h * h / 2;
+  const Scalar rate_gap = end.rate - start.rate - start.acceleration * h;
+  const Scalar acceleration_gap = end.acceleration - start.acceleration;
+  const Scalar c3 = (20 * gap - 8 * rate_gap * h + acceleration_gap * h * h) / (2 * h * h * h);
+  const Scalar c4 =
+      (-30 * gap + 14 * rate_gap * h - 2 * acceleration_gap * h * h) / (2 * h * h * h * h);
+  const Scalar c5 =
+      (12 * gap - 6 * rate_gap * h + acceleration_gap * h * h) / (2 * h * h * h * h * h);
+  const Scalar c2 = start.acceleration / 2;
+  MotionValue<Scalar> v;
+  v.value = start.value + tau * (start.rate + tau * (c2 + tau * (c3 + tau * (c4 + tau * c5))));
+  v.rate = start.rate + tau * (2 * c2 + tau * (3 * c3 + tau * (4 * c4 + tau * 5 * c5)));
+  v.acceleration = 2 * c2 + tau * (6 * c3 + tau * (12 * c4 + tau * 20 * c5));
+  return v;
+}
+
+/// Driver law k at time t, input laws interpolated within the step (input_value).
+template <class Scalar>
+MotionValue<Scalar> law_value(const Data<Scalar>& d, int k, Scalar t) {
+  const MotionLaw<Scalar>& law = d.laws[static_cast<std::size_t>(k)];
+  if (law.kind == MotionLawKind::input) return input_value(d, law.input.index, t);
+  return law(t, d.inputs.data());
+}
+
+/// A step of span h starts at d.t: input laws interpolate from their values now.
+template <class Scalar>
+void begin_input_span(Data<Scalar>& d, Scalar h) {
+  d.input_t0 = d.t;
+  d.input_t1 = d.t + h;
+}
+
+/// The step ended (or the state was set anew): its inputs are where the next one starts.
+template <class Scalar>
+void end_input_span(Data<Scalar>& d) {
+  d.inputs_start = d.inputs;  // same sizes: no allocation
+  d.input_t0 = d.input_t1 = d.t;
+}
 
 }  // namespace flexstress

@@ -137,6 +137,7 @@ StepStatus explicit_step(const Model<Scalar>& model, Data<Scalar>& d,
   auto& rk = d.rk4;
   in.initialized = false;  // an implicit step after this one starts afresh from the state
   const Scalar h = s.step, t0 = d.t;
+  begin_input_span(d, h);
   in.q_n = d.q;
   in.v_n = d.v;
   in.lambda_save = d.lambda;
@@ -168,6 +169,7 @@ StepStatus explicit_step(const Model<Scalar>& model, Data<Scalar>& d,
   detail::explicit_accelerations(model, d, s);
   d.a = d.v_dot;
   ++d.statistics.steps;
+  end_input_span(d);
   return StepStatus::ok;
 }
 

@@ -174,6 +174,7 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
   in.fresh_starts_left = 0;
   in.revision = d.revision;
   in.initialized = true;
+  end_input_span(d);
   d.message.fill('\0');
   return Status::success();
 }
@@ -235,7 +236,8 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   const bool started_reused = in.have_factorization;
   bool converged = false, fresh = false, stale_step = false, restored = false, diverged = false;
   int growth = 0, slow = 0;
-  bool raised = false, met_to_first_order = false;
+  bool raised = false, met_to_first_order = false, raised_in_step = false;
+  bool stalled = false;  // the last correction, with a fresh matrix, shrank by less than half
   Scalar previous = std::numeric_limits<Scalar>::infinity();
   Scalar left = previous;  // the last correction, or the error it leaves when estimated below it
   Scalar residual_prev = std::numeric_limits<Scalar>::infinity();
@@ -304,6 +306,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     }
     const Scalar last = previous;
     previous = size;
+    stalled = it > 0 && previous > Scalar(0.5) * last;
     // Newton with a fresh matrix converges near the solution; corrections that grow twice in a
     // row with one, beyond the step's own motion, diverge: the step is too large for the
     // motion. Stop before the state does. (Near a singular configuration corrections may stall
@@ -325,7 +328,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
       in.penalty_boost =
           std::min(Scalar(10) * in.penalty_boost, s.max_penalty_factor / s.penalty_factor);
       in.have_factorization = false;
-      raised = true;
+      raised = raised_in_step = true;
       slow = 0;
     }
     if (growth >= 2 &&
@@ -378,11 +381,19 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   // A sum is finite only if every term is (or it overflowed, itself a blow-up): a vectorized
   // test where allFinite() compares entry by entry.
   const bool finite = std::isfinite(d.v.sum() + d.v_dot.sum() + d.q.sum());
-  bool kept_at_limit = false;
-  if (!converged && finite && s.accept_at_iteration_limit && it >= s.max_iterations) {
-    converged = true;
-    kept_at_limit = true;
-    ++d.statistics.over_budget;
+  bool kept_at_limit = false, kept_stalled = false;
+  if (!converged && finite && it >= s.max_iterations) {
+    // Stalled within the joints' tolerance: more iterations would not move the state by more
+    // than a joint may be off (keep_stalled_steps). A budget too small for a step that still
+    // converges is not that: its corrections shrink fast.
+    kept_stalled = !s.accept_at_iteration_limit && s.keep_stalled_steps && stalled &&
+                   previous <= s.violation_limit && max_abs(d.phi) <= s.violation_limit;
+    if (s.accept_at_iteration_limit || kept_stalled) {
+      converged = true;
+      kept_at_limit = true;
+      ++d.statistics.over_budget;
+      if (kept_stalled) ++d.statistics.stalled_steps;
+    }
   }
   if (!converged || !finite) {
     // A step from a finite state that diverges or turns non-finite was too large for the
@@ -438,8 +449,10 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     stale_for_next = stale_for_next || in.fresh_starts_left > 0;
   }
   if (stale_for_next) in.have_factorization = false;
-  if (in.penalty_boost > Scalar(1)) {  // raised for this step only
-    in.penalty_boost = Scalar(1);
+  // A penalty raised in this step stays for the next (a mechanism near a singular
+  // configuration stays near it for some steps); otherwise it falls tenfold per step.
+  if (in.penalty_boost > Scalar(1) && !raised_in_step) {
+    in.penalty_boost = std::max(Scalar(1), in.penalty_boost / Scalar(10));
     in.have_factorization = false;
   }
   // The multipliers of the converged equations are lambda* + alpha Phi at the final positions,
@@ -476,7 +489,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   in.has_previous = true;
   ++d.statistics.steps;
   // Drift: |B v + Phi_t| with B of the last iterate (velocity_drift_limit).
-  bool project = s.project_velocities;
+  bool project = s.project_velocities || kept_stalled;
   if (!project && s.velocity_drift_limit > Scalar(0) && model.num_constraints() > 0) {
     jacobian_times(model, d, d.v, in.e);
     in.e += d.phi_t;
@@ -490,7 +503,8 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   }
   if (model.has_force_states()) update_force_states(model, d, /*start=*/false);
   if (project) {
-    detail::project_velocities(model, d, s.projection_iterations);
+    // A singular configuration's lost directions contract slowly in the projection too.
+    detail::project_velocities(model, d, (kept_stalled ? 10 : 1) * s.projection_iterations);
     if (s.project_accelerations) {
       update_kinematics(model, d);
       update_markers(model, d);

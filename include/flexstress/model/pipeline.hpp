@@ -44,7 +44,7 @@ template <class Scalar>
 void update_ground(const Model<Scalar>& model, Data<Scalar>& d) {
   const GroundMotion& gm = model.ground_motion();
   if (!gm.moving) return;
-  const auto law = [&](int k) { return d.laws[static_cast<std::size_t>(k)](d.t, d.inputs.data()); };
+  const auto law = [&](int k) { return law_value(d, k, d.t); };
   const MotionValue<Scalar> x = law(gm.x), y = law(gm.y), z = law(gm.z), angle = law(gm.angle);
   auto& g = d.ground;
   const Vec3<Scalar>& axis = model.ground_axis();
@@ -116,9 +116,7 @@ void update_constraints(const Model<Scalar>& model, Data<Scalar>& d, bool rates 
     }
     const auto& mi = model.markers()[static_cast<std::size_t>(j.marker_i)];
     const auto& mj = model.markers()[static_cast<std::size_t>(j.marker_j)];
-    const MotionValue<Scalar> law =
-        j.law >= 0 ? d.laws[static_cast<std::size_t>(j.law)](d.t, d.inputs.data())
-                   : MotionValue<Scalar>();
+    const MotionValue<Scalar> law = j.law >= 0 ? law_value(d, j.law, d.t) : MotionValue<Scalar>();
     evaluate_joint_rows(j.kind, d.markers[static_cast<std::size_t>(mi.slot)],
                         d.markers[static_cast<std::size_t>(mj.slot)], j.length, law, rows, rates);
     for (int r = 0; r < n; ++r) {
@@ -202,7 +200,7 @@ const MarkerState<Scalar>& force_marker(const Model<Scalar>& model, const Data<S
 template <class Scalar>
 Scalar valve_command(const Model<Scalar>& model, const Data<Scalar>& d, int k) {
   const auto& f = model.forces()[static_cast<std::size_t>(k)];
-  return d.laws[static_cast<std::size_t>(f.law)](d.t, d.inputs.data()).value;
+  return law_value(d, f.law, d.t).value;
 }
 
 /// The force of element k on its marker j's origin (global; marker i gets the opposite).

@@ -431,8 +431,10 @@ Status anchor_joint_at(const Model<Scalar>& m, Data<Scalar>& d, JointId id) {
   return Status::success();
 }
 
-/// Sets an input's value, rate and acceleration for the next step (a driver's law that reads
-/// it). Returns invalid_input, changing nothing, for a value that is not finite.
+/// Sets an input's value, rate and acceleration (for a driver's law that reads it) at the end
+/// of the next step, d.t + step (before initialize, at d.t); within the step the law follows
+/// the quintic from the values at its start (input_value, model/data.hpp). Returns
+/// invalid_input, changing nothing, for a value that is not finite.
 template <class Scalar>
 StepStatus set_input(const Model<Scalar>&, Data<Scalar>& d, InputId id, Scalar value,
                      Scalar rate = Scalar(0), Scalar acceleration = Scalar(0)) {

@@ -97,11 +97,18 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
   }
   const int finest = d.settings.max_step_halvings;
   int level = std::min(in.piece_level, finest);
+  // Input laws interpolate over the step's span; a step taken (also one kept with a violated
+  // joint) ends it, a step undone keeps it for the retry.
+  begin_input_span(d, d.settings.step);
   if (level == 0) {
     // The step as set (also directly in d.settings); a whole step reuses the matrix.
     if (in.h != d.settings.step) detail::use_piece(d, d.settings.step);
+    const Scalar t_n = d.t;
     const StepStatus whole = detail::step_whole(model, d, finest > 0);
-    if (!detail::may_pass_in_pieces(whole) || finest <= 0) return whole;
+    if (!detail::may_pass_in_pieces(whole) || finest <= 0) {
+      if (d.t != t_n) end_input_span(d);
+      return whole;
+    }
     level = 1;
   }
   const Scalar h = d.settings.step, h_start = in.h, t_start = d.t;
@@ -155,6 +162,7 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
   in.piece_level = passed >= 2 && detail::coarser_would_pass(d) ? level - 1 : level;
   if (in.piece_level == 0) detail::use_piece(d, h);
   d.message.fill('\0');  // the step passed: why a larger piece failed is no failure to report
+  end_input_span(d);
   return result;
 }
 

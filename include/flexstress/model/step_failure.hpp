@@ -116,7 +116,7 @@ int nonfinite_law(const Model<Scalar>& model, const Data<Scalar>& d, Scalar t) {
   for (std::size_t k = 0; k < model.joints().size(); ++k) {
     const auto& j = model.joints()[k];
     if (j.law < 0 || !d.joint_active[k]) continue;
-    const MotionValue<Scalar> v = d.laws[static_cast<std::size_t>(j.law)](t, d.inputs.data());
+    const MotionValue<Scalar> v = law_value(d, j.law, t);
     if (!std::isfinite(v.value) || !std::isfinite(v.rate) || !std::isfinite(v.acceleration))
       return static_cast<int>(k);
   }
@@ -127,7 +127,7 @@ template <class Scalar>
 void explain_nonfinite_law(const Model<Scalar>& model, Data<Scalar>& d, int joint, Scalar t_n,
                            Scalar t) {
   const auto& j = model.joints()[static_cast<std::size_t>(joint)];
-  const MotionValue<Scalar> v = d.laws[static_cast<std::size_t>(j.law)](t, d.inputs.data());
+  const MotionValue<Scalar> v = law_value(d, j.law, t);
   std::snprintf(d.message.data(), d.message.size(),
                 "step from t = %g: joint '%s' (%s): its law is not finite at t = %g (value %g, "
                 "rate %g, acceleration %g)",

@@ -12,6 +12,7 @@
 #include <doctest/doctest.h>
 
 #include <flexstress/fe/beam_line.hpp>
+#include <flexstress/reduction/modal_body_data.hpp>
 #include <flexstress/reduction/modal_body_io.hpp>
 
 #include "support/damaged_files.hpp"

@@ -45,8 +45,8 @@ class ModelBuilder {
   /// The ground (fixed): markers on it take node -1 and an offset (the position).
   BodyId ground() const { return BodyId{-1}; }
 
-  /// A rigid body: mass, centre of mass and inertia about the centre of mass (body frame), its
-  /// frame starting at `position` with `orientation`.
+  /// A rigid body: mass, centre of mass and inertia about the centre of mass (body frame); its
+  /// frame starts at the global origin, unrotated (set_initial_pose moves it).
   BodyId add_rigid_body(const std::string& name, Scalar mass, const Vec3<Scalar>& center_of_mass,
                         const Mat3<Scalar>& inertia_about_com);
 

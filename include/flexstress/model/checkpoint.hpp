@@ -216,6 +216,8 @@ Result<std::vector<unsigned char>> save_checkpoint(const Model<Scalar>& m, const
   }
   for (const auto& in : d.inputs) put_raw(w, in);
   for (const auto& in : d.inputs_start) put_raw(w, in);
+  w.put(d.input_t0);
+  w.put(d.input_t1);
   for (unsigned char s : d.input_set) w.put(s);
   w.put(d.revision);
   for (const auto& f : d.force_states) put_raw(w, f);
@@ -336,6 +338,7 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
   }
   for (auto& in : next.inputs) ok = ok && get_raw(r, in);
   for (auto& in : next.inputs_start) ok = ok && get_raw(r, in);
+  ok = ok && r.get(next.input_t0) && r.get(next.input_t1);
   for (auto& s : next.input_set) ok = ok && r.get(s);
   ok = ok && r.get(next.revision);
   for (auto& f : next.force_states) ok = ok && get_raw(r, f);

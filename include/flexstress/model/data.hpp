@@ -40,8 +40,8 @@ struct Data {
   std::vector<MotionLaw<Scalar>> laws;      ///< the drivers' current laws
   std::vector<MotionValue<Scalar>> inputs;  ///< by InputId: for the end of the next step
   std::vector<unsigned char> input_set;     ///< whether set_input was called for it
-  /// The inputs at the start of the step (the last step's end, or initialize()), and the
-  /// step's span [input_t0, input_t1]: within it an input law is interpolated (input_value).
+  /// The inputs at d.t, or at the start of a step under way (the last step's end, or as set
+  /// when initialize() ran), and the step's span [input_t0, input_t1] (input_value).
   std::vector<MotionValue<Scalar>> inputs_start;
   Scalar input_t0 = 0, input_t1 = 0;
   std::vector<MarkerAnchor<Scalar>> anchors;  ///< by marker slot (anchor_joint_at)
@@ -100,7 +100,8 @@ struct Data {
     /// The penalty's factor over ImplicitSettings::penalty_factor, raised within a step where
     /// the multiplier updates contract slowly (near a singular configuration); 1 between steps.
     Scalar penalty_boost = 1;
-    std::uint64_t revision = 0;  ///< the Data revision the history was built for
+    Scalar penalty_boost_start = 1;  ///< the boost the step under way started from
+    std::uint64_t revision = 0;      ///< the Data revision the history was built for
     bool initialized = false;
     MatrixX iteration;
     EnvelopeCholesky<Scalar, Eigen::Dynamic> cholesky;
@@ -206,18 +207,21 @@ struct Data {
 };
 
 /// Input k at time t. set_input gives an input's value, rate and acceleration for the end of
-/// the next step; where a step is evaluated before its end (the pieces of a split step, the
-/// stages of an explicit step) the input follows the quintic through its values, rates and
-/// accelerations at the step's start and end, as a law evaluated there would (held at the
-/// end's, an input would jump by the whole step at the first piece).
+/// the next step (d.inputs); inputs_start holds its values at the step's start (d.t when no
+/// step is under way). Between them (the pieces of a split step, the stages of an explicit
+/// step) the input follows the quintic through its values, rates and accelerations at the two
+/// ends, as a law evaluated there would (held at the end's, an input would jump by the whole
+/// step at the first piece). Outside a step, at d.t, it is the start's: what was set for the
+/// next step is not yet in force.
 template <class Scalar>
 MotionValue<Scalar> input_value(const Data<Scalar>& d, int k, Scalar t) {
-  const auto& end = d.inputs[static_cast<std::size_t>(k)];
-  const Scalar span = d.input_t1 - d.input_t0;
-  if (!(span > Scalar(0)) || !(t < d.input_t1)) return end;
   const auto& start = d.inputs_start[static_cast<std::size_t>(k)];
-  // s(tau) = sum c_i tau^i on [0, span], matching value, rate and acceleration at both ends.
-  const Scalar h = span, tau = std::max(Scalar(0), t - d.input_t0);
+  const auto& end = d.inputs[static_cast<std::size_t>(k)];
+  const Scalar h = d.input_t1 - d.input_t0;
+  if (!(h > Scalar(0)) || !(t > d.input_t0)) return start;
+  if (!(t < d.input_t1)) return end;
+  // s(tau) = sum c_i tau^i on [0, h], matching value, rate and acceleration at both ends.
+  const Scalar tau = t - d.input_t0;
   const Scalar gap = end.value - start.value - start.rate * h - start.acceleration * h * h / 2;
   const Scalar rate_gap = end.rate - start.rate - start.acceleration * h;
   const Scalar acceleration_gap = end.acceleration - start.acceleration;
@@ -242,14 +246,21 @@ MotionValue<Scalar> law_value(const Data<Scalar>& d, int k, Scalar t) {
   return law(t, d.inputs.data());
 }
 
-/// A step of span h starts at d.t: input laws interpolate from their values now.
+/// A step of span h starts at d.t: input laws run from their values now to those set for its
+/// end.
 template <class Scalar>
 void begin_input_span(Data<Scalar>& d, Scalar h) {
   d.input_t0 = d.t;
   d.input_t1 = d.t + h;
 }
 
-/// The step ended (or the state was set anew): its inputs are where the next one starts.
+/// Whether a step is under way (initialize() inside it keeps its inputs' start).
+template <class Scalar>
+bool input_span_open(const Data<Scalar>& d) {
+  return d.input_t1 > d.input_t0;
+}
+
+/// The step was taken: the inputs set for its end are the values now.
 template <class Scalar>
 void end_input_span(Data<Scalar>& d) {
   d.inputs_start = d.inputs;  // same sizes: no allocation

@@ -80,6 +80,9 @@ template <class Scalar>
 Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iterations = 100) {
   using detail::remember;
   auto& in = d.integrator;
+  // Called by the user, the inputs as set are the values at d.t; called by step() (a restart
+  // after a runtime change), the step under way keeps its start.
+  if (!input_span_open(d)) end_input_span(d);
   detail::set_step_parameters(d, d.settings.step);
   in.piece_level = 0;
   for (std::size_t k = 0; k < model.joints().size(); ++k) {
@@ -174,7 +177,6 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
   in.fresh_starts_left = 0;
   in.revision = d.revision;
   in.initialized = true;
-  end_input_span(d);
   d.message.fill('\0');
   return Status::success();
 }
@@ -182,7 +184,7 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
 namespace detail {
 
 /// Back to the state the step started from (at t_n); the matrix is factorized anew, with the
-/// penalty a step starts from.
+/// penalty the step started from.
 template <class Scalar>
 void undo_step(Data<Scalar>& d, Scalar t_n) {
   auto& in = d.integrator;
@@ -192,7 +194,7 @@ void undo_step(Data<Scalar>& d, Scalar t_n) {
   d.a = in.a_n;
   d.t = t_n;
   in.have_factorization = false;
-  in.penalty_boost = Scalar(1);
+  in.penalty_boost = in.penalty_boost_start;
 }
 
 /// One generalized-alpha step of size d.integrator.h (step() in model/step.hpp retries a
@@ -209,6 +211,11 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     if (!initialize(model, d).ok()) return StepStatus::constraint_violation;
   }
   const Scalar h = in.h;
+  // A penalty kept from earlier steps, within the largest the settings now allow.
+  if (in.penalty_boost > Scalar(1))
+    in.penalty_boost =
+        std::max(Scalar(1), std::min(in.penalty_boost, s.max_penalty_factor / s.penalty_factor));
+  in.penalty_boost_start = in.penalty_boost;
   in.q_n = d.q;
   in.v_n = d.v;
   in.vd_n = d.v_dot;
@@ -306,7 +313,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     }
     const Scalar last = previous;
     previous = size;
-    stalled = it > 0 && previous > Scalar(0.5) * last;
+    stalled = fresh && it > 0 && previous > Scalar(0.5) * last;
     // Newton with a fresh matrix converges near the solution; corrections that grow twice in a
     // row with one, beyond the step's own motion, diverge: the step is too large for the
     // motion. Stop before the state does. (Near a singular configuration corrections may stall

@@ -432,17 +432,20 @@ Status anchor_joint_at(const Model<Scalar>& m, Data<Scalar>& d, JointId id) {
 }
 
 /// Sets an input's value, rate and acceleration (for a driver's law that reads it) at the end
-/// of the next step, d.t + step (before initialize, at d.t); within the step the law follows
-/// the quintic from the values at its start (input_value, model/data.hpp). Returns
-/// invalid_input, changing nothing, for a value that is not finite.
+/// of the next step, d.t + step; within the step the law follows the quintic from its values
+/// at the start (input_value, model/data.hpp). initialize() takes the values as set as the
+/// values at d.t (so does the first set_input of an input). Returns invalid_input, changing
+/// nothing, for a value that is not finite.
 template <class Scalar>
 StepStatus set_input(const Model<Scalar>&, Data<Scalar>& d, InputId id, Scalar value,
                      Scalar rate = Scalar(0), Scalar acceleration = Scalar(0)) {
   if (!std::isfinite(double(value)) || !std::isfinite(double(rate)) ||
       !std::isfinite(double(acceleration)))
     return StepStatus::invalid_input;
-  d.inputs[static_cast<std::size_t>(id.index)] = {value, rate, acceleration};
-  d.input_set[static_cast<std::size_t>(id.index)] = 1;
+  const auto k = static_cast<std::size_t>(id.index);
+  d.inputs[k] = {value, rate, acceleration};
+  if (!d.input_set[k]) d.inputs_start[k] = d.inputs[k];  // its value now, too, until a step
+  d.input_set[k] = 1;
   return StepStatus::ok;
 }
 

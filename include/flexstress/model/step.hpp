@@ -90,16 +90,17 @@ bool coarser_would_pass(const Data<Scalar>& d) {
 template <class Scalar>
 StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
   auto& in = d.integrator;
-  // A runtime change (a joint switched): restart from the state as it is; this also starts
-  // again from whole steps. The reason a restart failed stays in d.message.
+  // Input laws run over the step's span; a step taken (also one kept with a violated joint)
+  // ends it, a step undone keeps it for the retry.
+  begin_input_span(d, d.settings.step);
+  // A runtime change (a joint switched): restart from the state as it is (with the inputs'
+  // values now); this also starts again from whole steps. The reason a restart failed stays in
+  // d.message.
   if (!in.initialized || d.revision != in.revision) {
     if (!initialize(model, d).ok()) return StepStatus::constraint_violation;
   }
   const int finest = d.settings.max_step_halvings;
   int level = std::min(in.piece_level, finest);
-  // Input laws interpolate over the step's span; a step taken (also one kept with a violated
-  // joint) ends it, a step undone keeps it for the retry.
-  begin_input_span(d, d.settings.step);
   if (level == 0) {
     // The step as set (also directly in d.settings); a whole step reuses the matrix.
     if (in.h != d.settings.step) detail::use_piece(d, d.settings.step);
@@ -112,6 +113,7 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
     level = 1;
   }
   const Scalar h = d.settings.step, h_start = in.h, t_start = d.t;
+  const Scalar boost_start = in.penalty_boost;
   const bool had_previous = in.has_previous;
   const int had_converged = in.converged_multipliers, had_level = in.piece_level;
   detail::save_split_start(d);
@@ -152,6 +154,7 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
     in.has_previous = had_previous;
     in.converged_multipliers = had_converged;
     in.piece_level = had_level;
+    in.penalty_boost = boost_start;
     d.t = t_start;
     return st;
   }

@@ -61,13 +61,19 @@ struct ImplicitSettings {
   /// h = 1e-3).
   Scalar penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e2) : Scalar(1e3);
   /// The largest penalty factor a step raises penalty_factor to where the multipliers converge
-  /// slowly: tenfold after two corrections with a fresh matrix that each shrank by less than
-  /// half on constraints already met. A raised penalty stays for the next step while steps
-  /// keep raising it, then falls tenfold per step back to penalty_factor (penalty_factor or
-  /// less: never raised). Near a singular configuration (the 40-bar chain) it saves a third of
-  /// the iterations; away from one it does not act. Above about 1e5 the round-off of alpha Phi
-  /// on coordinates of tens of metres exceeds the correction tolerance.
+  /// slowly: tenfold after two corrections with a fresh matrix that each shrank by less than a
+  /// factor of four on constraints already met (Newton with a fresh matrix contracts faster;
+  /// the augmented Lagrangian's multiplier updates contract by 1 / (1 + alpha sigma^2) in a
+  /// direction where the Jacobian's singular value is sigma, slowly in a long chain or near a
+  /// singular configuration). penalty_factor or less: never raised. Above about 1e5 the
+  /// round-off of alpha Phi on coordinates of tens of metres exceeds the correction tolerance.
   Scalar max_penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e4) : Scalar(1e5);
+  /// Steps a raised penalty stays after the last step that raised it; then it falls tenfold,
+  /// and again after as many steps, back to penalty_factor. A mechanism whose multipliers
+  /// converge slowly (the 40-bar chain, away from its singular configurations too) keeps the
+  /// larger penalty instead of raising it anew every other step; a raised penalty makes a
+  /// reused matrix go stale sooner, which the mechanisms that never raise it do not pay.
+  int penalty_hold_steps = 100;
   /// Keep a step that reaches max_iterations with Newton stalled short of its tolerance but
   /// within the joints': its last correction, made with a fresh matrix, shrank by less than
   /// half, and it and the constraint violation are within violation_limit. More iterations would
@@ -209,6 +215,7 @@ Status check_settings(const ImplicitSettings<Scalar>& s) {
     return bad("multiplier_trend_memory must be in [0, 1]");
   if (!non_negative(s.max_penalty_factor))
     return bad("max_penalty_factor must be finite and not negative (0: never raised)");
+  if (s.penalty_hold_steps < 0) return bad("penalty_hold_steps must not be negative");
   if (s.refactor_backoff_limit < 1)
     return bad("refactor_backoff_limit must be at least 1 (1: only the next step)");
   if (s.max_step_halvings < 0 || s.max_step_halvings > 20)

@@ -4,7 +4,7 @@
 // bit for bit; a restore into a model that differs fails and says what differs (the first body,
 // joint, force, input or output set whose kind, size or parameters are not the checkpoint's).
 //
-// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 9, signature 0): the
+// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 10, signature 0): the
 // model description (entries of a label, a summary and a hash of the part's parameters), then
 // the Data. A callback law cannot be saved: the checkpoint records that there was one, and the
 // restoring Data must hold a callback law in that place (its own function is kept).
@@ -38,7 +38,7 @@ struct ModelPart {
 
 namespace checkpoint_model_detail {
 
-inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 9, "model checkpoint"};
+inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 10, "model checkpoint"};
 
 template <class T>
 void put_raw(binary::Writer& w, const T& x) {
@@ -240,6 +240,7 @@ Result<std::vector<unsigned char>> save_checkpoint(const Model<Scalar>& m, const
   w.put(static_cast<std::int32_t>(in.piece_level));
   w.put(static_cast<std::int32_t>(in.reuse_backoff));
   w.put(static_cast<std::int32_t>(in.fresh_starts_left));
+  w.put(static_cast<std::int32_t>(in.boost_age));
   w.put(in.h);
   w.put(in.revision);
   w.put(in.penalty);
@@ -360,12 +361,12 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
   auto& in = next.integrator;
   std::uint8_t flags[4] = {};
   for (auto& f : flags) ok = ok && r.get(f);
-  std::int32_t converged = 0, piece_level = 0, backoff = 0, fresh_starts = 0;
+  std::int32_t converged = 0, piece_level = 0, backoff = 0, fresh_starts = 0, boost_age = 0;
   Scalar piece = 0;
   ok = ok && r.get(converged) && r.get(piece_level) && r.get(backoff) && r.get(fresh_starts) &&
-       r.get(piece) && r.get(in.revision) && r.get(in.penalty) && r.get(in.penalty_boost) &&
-       r.get(in.acceleration_scale) && get_vector(r, in.vd_prev) && get_vector(r, in.lambda_last) &&
-       get_vector(r, in.lambda_increment);
+       r.get(boost_age) && r.get(piece) && r.get(in.revision) && r.get(in.penalty) &&
+       r.get(in.penalty_boost) && r.get(in.acceleration_scale) && get_vector(r, in.vd_prev) &&
+       get_vector(r, in.lambda_last) && get_vector(r, in.lambda_increment);
   if (ok) {
     set_step_size(next, next.settings.step);  // the step's constants (clears the factorization)
     // The pieces the step was taking (step()), when a valid part of the step.
@@ -384,6 +385,7 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
     const int limit = std::max(1, next.settings.refactor_backoff_limit);
     in.reuse_backoff = std::clamp(static_cast<int>(backoff), 0, limit);
     in.fresh_starts_left = std::clamp(static_cast<int>(fresh_starts), 0, limit);
+    in.boost_age = std::clamp(static_cast<int>(boost_age), 0, next.settings.penalty_hold_steps + 1);
   }
   if (ok && in.have_factorization) {
     auto iteration = flat(in.iteration);

@@ -98,9 +98,11 @@ struct Data {
     /// how many of them are left (ImplicitSettings::refactor_backoff_limit).
     int reuse_backoff = 0, fresh_starts_left = 0;
     /// The penalty's factor over ImplicitSettings::penalty_factor, raised within a step where
-    /// the multiplier updates contract slowly (near a singular configuration); 1 between steps.
+    /// the multiplier updates contract slowly; kept for penalty_hold_steps steps after that.
     Scalar penalty_boost = 1;
     Scalar penalty_boost_start = 1;  ///< the boost the step under way started from
+    int boost_age = 0;               ///< steps since the penalty was last raised or lowered
+    int boost_age_start = 0;         ///< the age the step under way started from
     std::uint64_t revision = 0;      ///< the Data revision the history was built for
     bool initialized = false;
     MatrixX iteration;

@@ -173,6 +173,7 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
   in.has_previous = false;
   in.converged_multipliers = 1;
   in.penalty_boost = Scalar(1);
+  in.boost_age = 0;
   in.reuse_backoff = 0;
   in.fresh_starts_left = 0;
   in.revision = d.revision;
@@ -195,6 +196,7 @@ void undo_step(Data<Scalar>& d, Scalar t_n) {
   d.t = t_n;
   in.have_factorization = false;
   in.penalty_boost = in.penalty_boost_start;
+  in.boost_age = in.boost_age_start;
 }
 
 /// One generalized-alpha step of size d.integrator.h (step() in model/step.hpp retries a
@@ -216,6 +218,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     in.penalty_boost =
         std::max(Scalar(1), std::min(in.penalty_boost, s.max_penalty_factor / s.penalty_factor));
   in.penalty_boost_start = in.penalty_boost;
+  in.boost_age_start = in.boost_age;
   in.q_n = d.q;
   in.v_n = d.v;
   in.vd_n = d.v_dot;
@@ -326,7 +329,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     // max_penalty_factor). (With constraints not met the slow contraction is the step's
     // nonlinearity, which a larger penalty, whose transient forces alpha Phi the matrix leaves
     // out, makes worse: the flexible slider crank at 1 ms.)
-    slow = fresh && it > 0 && previous > in.tol_x && previous > Scalar(0.5) * last &&
+    slow = fresh && it > 0 && previous > in.tol_x && previous > Scalar(0.25) * last &&
                    max_abs(d.phi) <= in.tol_x
                ? slow + 1
                : 0;
@@ -456,11 +459,13 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     stale_for_next = stale_for_next || in.fresh_starts_left > 0;
   }
   if (stale_for_next) in.have_factorization = false;
-  // A penalty raised in this step stays for the next (a mechanism near a singular
-  // configuration stays near it for some steps); otherwise it falls tenfold per step.
-  if (in.penalty_boost > Scalar(1) && !raised_in_step) {
+  // A raised penalty stays for penalty_hold_steps steps (a mechanism whose multipliers
+  // converged slowly will again), then falls tenfold.
+  in.boost_age = raised_in_step ? 0 : std::min(in.boost_age, s.penalty_hold_steps) + 1;
+  if (in.penalty_boost > Scalar(1) && in.boost_age > s.penalty_hold_steps) {
     in.penalty_boost = std::max(Scalar(1), in.penalty_boost / Scalar(10));
     in.have_factorization = false;
+    in.boost_age = 0;
   }
   // The multipliers of the converged equations are lambda* + alpha Phi at the final positions,
   // Phi + B dx to first order in the last correction dx (the workspace holds Phi and B of the

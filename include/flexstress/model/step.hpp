@@ -114,6 +114,7 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
   }
   const Scalar h = d.settings.step, h_start = in.h, t_start = d.t;
   const Scalar boost_start = in.penalty_boost;
+  const int boost_age_start = in.boost_age;
   const bool had_previous = in.has_previous;
   const int had_converged = in.converged_multipliers, had_level = in.piece_level;
   detail::save_split_start(d);
@@ -155,6 +156,7 @@ StepStatus step(const Model<Scalar>& model, Data<Scalar>& d) {
     in.converged_multipliers = had_converged;
     in.piece_level = had_level;
     in.penalty_boost = boost_start;
+    in.boost_age = boost_age_start;
     d.t = t_start;
     return st;
   }

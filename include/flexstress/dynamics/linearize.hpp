@@ -5,7 +5,8 @@
 // M is the mass matrix; K_eff = d/dx (B^T lambda - Q) by central differences along each
 // velocity direction (so geometric stiffness of gravity and joint reactions is included); both
 // are projected on an orthonormal basis N of the null space of B (the motions the joints allow):
-// K_r = N^T K_eff N, M_r = N^T M N. For tests and design studies; allocates.
+// K_r = N^T K_eff N, M_r = N^T M N; K_r V = M_r V Lambda gives the frequencies and, as N V, the
+// mode shapes in the model's velocity coordinates. For tests and design studies; allocates.
 #pragma once
 
 #include <algorithm>
@@ -22,6 +23,11 @@ namespace flexstress {
 struct Linearization {
   Eigen::MatrixXd mass, stiffness;  ///< reduced to the joints' null space
   Eigen::VectorXd frequencies_hz;   ///< ascending; negative eigenvalues give negative values
+  /// The mode shapes, column i with frequencies_hz(i), as velocity-coordinate motions of the
+  /// whole model (nv rows: each body's translation, rotation in its own frame and modal
+  /// coordinates, as d.v), orthonormal in the mass matrix (modes^T M modes = I) and allowed by
+  /// the joints (B modes = 0).
+  Eigen::MatrixXd modes;
 };
 
 /// M and K (nv x nv) projected on an orthonormal basis of the null space of B (the motions the
@@ -55,6 +61,7 @@ Result<Linearization> linearization_on_null_space(const Eigen::MatrixXd& m, Eige
     lin.frequencies_hz(i) =
         (l >= 0 ? 1 : -1) * std::sqrt(std::abs(l)) / (2 * 3.14159265358979323846);
   }
+  lin.modes = n * es.eigenvectors();  // V^T M_r V = I, so (N V)^T M (N V) = I
   return lin;
 }
 

@@ -68,8 +68,10 @@ struct ImplicitSettings {
   /// singular configuration). penalty_factor or less: never raised. Above about 1e5 the
   /// round-off of alpha Phi on coordinates of tens of metres exceeds the correction tolerance.
   Scalar max_penalty_factor = std::is_same_v<Scalar, float> ? Scalar(1e4) : Scalar(1e5);
-  /// Steps a raised penalty stays after the last step that raised it; then it falls tenfold,
-  /// and again after as many steps, back to penalty_factor. A mechanism whose multipliers
+  /// Steps a raised penalty stays after the last step that raised it (each piece of a split
+  /// step counts as one); then it falls tenfold, and again after as many steps, back to
+  /// penalty_factor (0: it falls at the end of the step that raised it). A mechanism whose
+  /// multipliers
   /// converge slowly (the 40-bar chain, away from its singular configurations too) keeps the
   /// larger penalty instead of raising it anew every other step; a raised penalty makes a
   /// reused matrix go stale sooner, which the mechanisms that never raise it do not pay.

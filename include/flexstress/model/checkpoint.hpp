@@ -22,6 +22,7 @@
 
 #include "flexstress/core/binary_io.hpp"
 #include "flexstress/core/status.hpp"
+#include "flexstress/dynamics/step_settings.hpp"
 #include "flexstress/fatigue/streaming_damage_io.hpp"
 #include "flexstress/model/data.hpp"
 #include "flexstress/model/implicit_step.hpp"
@@ -358,6 +359,10 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
   }
   for (auto& refused : next.meter_refused) ok = ok && r.get(refused) && refused >= 0;
   ok = ok && get_raw(r, next.settings) && get_raw(r, next.statistics);
+  // Settings read as bytes: a damaged file must not hand the step a negative hold or a NaN step.
+  if (ok)
+    if (Status checked = check_settings(next.settings); !checked)
+      return bad("its integrator settings are damaged (", checked.error().what(), ")");
   auto& in = next.integrator;
   std::uint8_t flags[4] = {};
   for (auto& f : flags) ok = ok && r.get(f);
@@ -385,7 +390,7 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
     const int limit = std::max(1, next.settings.refactor_backoff_limit);
     in.reuse_backoff = std::clamp(static_cast<int>(backoff), 0, limit);
     in.fresh_starts_left = std::clamp(static_cast<int>(fresh_starts), 0, limit);
-    in.boost_age = std::clamp(static_cast<int>(boost_age), 0, next.settings.penalty_hold_steps + 1);
+    in.boost_age = std::clamp(static_cast<int>(boost_age), 0, next.settings.penalty_hold_steps);
   }
   if (ok && in.have_factorization) {
     auto iteration = flat(in.iteration);

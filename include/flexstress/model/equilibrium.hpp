@@ -202,9 +202,12 @@ Status solve_static_equilibrium(const Model<Scalar>& model, Data<Scalar>& d,
     if (applied && d.phi.size() > 0) d.phi.cwiseAbs().maxCoeff(&worst);
     if (applied) {
       // Not converged: back to where it started (a diverged iterate may not even be finite),
-      // with the violation reported at the last iterate.
+      // with the violation reported at the last iterate. The iteration matrix was overwritten
+      // and the velocities zeroed: the next step starts afresh.
       d.q = q_start;
       d.lambda = lambda_start;
+      d.integrator.initialized = false;
+      d.integrator.have_factorization = false;
       evaluate(model, d);
       if (d.phi.size() == 0)
         return make_error(ErrorCode::not_converged, "static equilibrium did not converge in ",

@@ -460,9 +460,11 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   }
   if (stale_for_next) in.have_factorization = false;
   // A raised penalty stays for penalty_hold_steps steps (a mechanism whose multipliers
-  // converged slowly will again), then falls tenfold.
-  in.boost_age = raised_in_step ? 0 : std::min(in.boost_age, s.penalty_hold_steps) + 1;
-  if (in.penalty_boost > Scalar(1) && in.boost_age > s.penalty_hold_steps) {
+  // converged slowly will again), then falls tenfold. The age saturates at the hold.
+  in.boost_age = raised_in_step                        ? 0
+                 : in.boost_age < s.penalty_hold_steps ? in.boost_age + 1
+                                                       : s.penalty_hold_steps;
+  if (in.penalty_boost > Scalar(1) && in.boost_age >= s.penalty_hold_steps) {
     in.penalty_boost = std::max(Scalar(1), in.penalty_boost / Scalar(10));
     in.have_factorization = false;
     in.boost_age = 0;

@@ -71,10 +71,10 @@ struct ImplicitSettings {
   /// Steps a raised penalty stays after the last step that raised it (each piece of a split
   /// step counts as one); then it falls tenfold, and again after as many steps, back to
   /// penalty_factor (0: it falls at the end of the step that raised it). A mechanism whose
-  /// multipliers
-  /// converge slowly (the 40-bar chain, away from its singular configurations too) keeps the
-  /// larger penalty instead of raising it anew every other step; a raised penalty makes a
-  /// reused matrix go stale sooner, which the mechanisms that never raise it do not pay.
+  /// multipliers converge slowly (the 40-bar chain, away from its singular configurations too)
+  /// keeps the larger penalty instead of raising it anew every other step; a raised penalty
+  /// makes a reused matrix go stale sooner, which the mechanisms that never raise it do not
+  /// pay.
   int penalty_hold_steps = 100;
   /// Keep a step that reaches max_iterations with Newton stalled short of its tolerance but
   /// within the joints': its last correction, made with a fresh matrix, shrank by less than

@@ -324,11 +324,12 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     growth = fresh && it > 0 && previous > last ? growth + 1 : 0;
     // The augmented Lagrangian's multiplier updates contract by about
     // 1 / (1 + penalty sigma^2) per iteration in a direction where the constraint Jacobian's
-    // singular value is sigma: near a singular configuration slowly even with a fresh matrix.
-    // Two such iterations in a row, on constraints already met, raise the penalty tenfold (up to
-    // max_penalty_factor). (With constraints not met the slow contraction is the step's
-    // nonlinearity, which a larger penalty, whose transient forces alpha Phi the matrix leaves
-    // out, makes worse: the flexible slider crank at 1 ms.)
+    // singular value is sigma: near a singular configuration, or in a long chain, slowly even
+    // with a fresh matrix. Two iterations in a row that shrink by less than a factor of four
+    // (a fresh matrix's Newton contracts faster), on constraints already met, raise the penalty
+    // tenfold (up to max_penalty_factor). (With constraints not met the slow contraction is the
+    // step's nonlinearity, which a larger penalty, whose transient forces alpha Phi the matrix
+    // leaves out, makes worse: the flexible slider crank at 1 ms.)
     slow = fresh && it > 0 && previous > in.tol_x && previous > Scalar(0.25) * last &&
                    max_abs(d.phi) <= in.tol_x
                ? slow + 1

@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -116,12 +117,21 @@ struct MarkerState {
   VectorEval<Scalar> origin, x, y, z;
   Mat3<Scalar> rotation = Mat3<Scalar>::Identity();
   const VectorEval<Scalar>& axis(int a) const { return a == 0 ? x : a == 1 ? y : z; }
+  /// Axis A (0 x, 1 y, 2 z) chosen at compile time: the joint kernels' rows name theirs.
+  template <int A>
+  const VectorEval<Scalar>& axis() const {
+    static_assert(A >= 0 && A < 3, "a marker has axes 0 (x), 1 (y) and 2 (z)");
+    if constexpr (A == 0) return x;
+    if constexpr (A == 1) return y;
+    if constexpr (A == 2) return z;
+  }
 };
 
 /// One row's Jacobian on one body: six rigid columns and the weights of the modal columns,
 /// g_v per marker vector v (origin, x, y, z), in the body frame. Only the weights named in
-/// `parts` hold values: a row starts with none (clear()), and the first addition to a weight
-/// sets it, so clearing a row does not write the twelve weights a row mostly leaves unused.
+/// `parts` hold values: a row starts with none, and the first addition to a weight sets it, so
+/// a row never writes the twelve weights it mostly leaves unused. A joint's rows start with a
+/// set_ call (which writes all six rigid columns) and go on with add_ calls: nothing is cleared.
 template <class Scalar>
 struct RowSide {
   Eigen::Matrix<Scalar, 1, 6> rigid = Eigen::Matrix<Scalar, 1, 6>::Zero();
@@ -131,12 +141,6 @@ struct RowSide {
   /// these only (a revolute's coincidence rows read the origin, its perpendicularity rows one
   /// axis each, although the joint as a whole reads three vectors).
   unsigned parts = 0;
-
-  /// The zero row (its weights left as they are: none is named in parts).
-  void clear() {
-    rigid.setZero();
-    parts = 0;
-  }
 
   // Written out in scalars: these run for every row of every joint at every Newton iterate,
   // and as Eigen expressions GCC left their 3-vector products to out-of-line calls.
@@ -148,18 +152,30 @@ struct RowSide {
     for (int c = 0; c < 3; ++c) rigid(c) += s * b(c);
     add_moment_and_weight(m.origin.local, bb, 0);
   }
-  /// += s e_c^T J_origin: one coordinate of the origin (A^T e_c is row c of A).
-  FLEXSTRESS_ALWAYS_INLINE void add_origin_component(const MarkerState<Scalar>& m, int c,
-                                                     Scalar s) {
+  /// = s b^T J_origin: the row from scratch.
+  FLEXSTRESS_ALWAYS_INLINE void set_origin(const MarkerState<Scalar>& m, const Vec3<Scalar>& b,
+                                           Scalar s = Scalar(1)) {
+    for (int c = 0; c < 3; ++c) rigid(c) = s * b(c);
+    set_moment_and_weight(m.origin.local, turned(m.rotation, b, s), 0);
+  }
+  /// = s e_c^T J_origin: one coordinate of the origin (A^T e_c is row c of A).
+  template <int C>
+  FLEXSTRESS_ALWAYS_INLINE void set_origin_component(const MarkerState<Scalar>& m, Scalar s) {
     const Mat3<Scalar>& a = m.rotation;
-    const Vec3<Scalar> bb(s * a(c, 0), s * a(c, 1), s * a(c, 2));
-    rigid(c) += s;
-    add_moment_and_weight(m.origin.local, bb, 0);
+    for (int k = 0; k < 3; ++k) rigid(k) = k == C ? s : Scalar(0);
+    set_moment_and_weight(m.origin.local, Vec3<Scalar>(s * a(C, 0), s * a(C, 1), s * a(C, 2)), 0);
   }
   /// += s b^T J_axis(a) (a direction: no translation column).
   FLEXSTRESS_ALWAYS_INLINE void add_axis(const MarkerState<Scalar>& m, int a, const Vec3<Scalar>& b,
                                          Scalar s = Scalar(1)) {
     add_moment_and_weight(m.axis(a).local, turned(m.rotation, b, s), 1 + a);
+  }
+  /// = s b^T J_axis(A): the row from scratch.
+  template <int A>
+  FLEXSTRESS_ALWAYS_INLINE void set_axis(const MarkerState<Scalar>& m, const Vec3<Scalar>& b,
+                                         Scalar s = Scalar(1)) {
+    for (int c = 0; c < 3; ++c) rigid(c) = Scalar(0);
+    set_moment_and_weight(m.template axis<A>().local, turned(m.rotation, b, s), 1 + A);
   }
   /// The row of a s + b t (for combining rows).
   static RowSide combine(Scalar s, const RowSide& a, Scalar t, const RowSide& b) {
@@ -183,6 +199,15 @@ struct RowSide {
                         a(0, 1) * b0 + a(1, 1) * b1 + a(2, 1) * b2,
                         a(0, 2) * b0 + a(1, 2) * b1 + a(2, 2) * b2);
   }
+  /// rigid's rotation columns = (u x bb)^T, weight[v] = bb, and only v in parts.
+  FLEXSTRESS_ALWAYS_INLINE void set_moment_and_weight(const Vec3<Scalar>& u, const Vec3<Scalar>& bb,
+                                                      int v) {
+    rigid(3) = u(1) * bb(2) - u(2) * bb(1);
+    rigid(4) = u(2) * bb(0) - u(0) * bb(2);
+    rigid(5) = u(0) * bb(1) - u(1) * bb(0);
+    weight[static_cast<std::size_t>(v)] = bb;
+    parts = 1u << v;
+  }
   /// rigid's rotation columns += (u x bb)^T, weight[v] += bb (= bb if not yet in parts).
   FLEXSTRESS_ALWAYS_INLINE void add_moment_and_weight(const Vec3<Scalar>& u, const Vec3<Scalar>& bb,
                                                       int v) {
@@ -199,22 +224,13 @@ struct RowSide {
   }
 };
 
-/// The rows of one joint.
+/// The rows of one joint. Each row helper below writes every field of its rows, so the rows
+/// are not cleared between joints.
 template <class Scalar>
 struct JointRows {
   int count = 0;
   std::array<Scalar, max_joint_equations> phi{}, phi_t{}, conv{};
   std::array<RowSide<Scalar>, max_joint_equations> i{}, j{};
-
-  void reset(int n) {
-    count = n;
-    for (int r = 0; r < n; ++r) {
-      const auto k = static_cast<std::size_t>(r);
-      phi[k] = phi_t[k] = conv[k] = Scalar(0);
-      i[k].clear();
-      j[k].clear();
-    }
-  }
 };
 
 namespace joint_rows {
@@ -222,39 +238,44 @@ namespace joint_rows {
 template <class Scalar>
 using Rows = JointRows<Scalar>;
 
-// Each helper writes row r; conv only with rates (a Newton iterate needs Phi and B alone, and
-// its markers carry no velocities). Out of line, one copy shared by the joint kinds: inlined
+// Each helper writes row r whole: phi, phi_t (0: the joints hold without time), conv (0 without
+// rates: a Newton iterate needs Phi and B alone, and its markers carry no velocities) and both
+// sides. Out of line, one copy shared by the joint kinds: inlined
 // into every case of the switch below they made it too large for the instruction cache
 // (measured on the crane's step).
 
-/// a_i . b_j = 0 (dot-1).
-template <class Scalar>
-FLEXSTRESS_NOINLINE_FLATTEN void perpendicular(const MarkerState<Scalar>& mi, int ai,
-                                               const MarkerState<Scalar>& mj, int aj,
-                                               Rows<Scalar>& out, int r, bool rates) {
+/// a_i . b_j = 0 (dot-1), axis AI of marker i and AJ of marker j (compile-time: a row's axes
+/// are fixed by its joint kind).
+template <int AI, int AJ, class Scalar>
+FLEXSTRESS_NOINLINE_FLATTEN void perpendicular(const MarkerState<Scalar>& mi,
+                                               const MarkerState<Scalar>& mj, Rows<Scalar>& out,
+                                               int r, bool rates) {
   const auto k = static_cast<std::size_t>(r);
-  const auto& a = mi.axis(ai);
-  const auto& b = mj.axis(aj);
+  const auto& a = mi.template axis<AI>();
+  const auto& b = mj.template axis<AJ>();
   out.phi[k] = a.value.dot(b.value);
-  out.i[k].add_axis(mi, ai, b.value);
-  out.j[k].add_axis(mj, aj, a.value);
-  if (rates)
-    out.conv[k] = a.convective.dot(b.value) + Scalar(2) * a.velocity.dot(b.velocity) +
-                  a.value.dot(b.convective);
+  out.phi_t[k] = Scalar(0);
+  out.i[k].template set_axis<AI>(mi, b.value);
+  out.j[k].template set_axis<AJ>(mj, a.value);
+  out.conv[k] = rates ? a.convective.dot(b.value) + Scalar(2) * a.velocity.dot(b.velocity) +
+                            a.value.dot(b.convective)
+                      : Scalar(0);
 }
 
-/// a_i . (r_j - r_i) = 0 (dot-2).
-template <class Scalar>
-FLEXSTRESS_NOINLINE_FLATTEN void in_plane(const MarkerState<Scalar>& mi, int ai,
+/// a_i . (r_j - r_i) = 0 (dot-2), axis AI of marker i.
+template <int AI, class Scalar>
+FLEXSTRESS_NOINLINE_FLATTEN void in_plane(const MarkerState<Scalar>& mi,
                                           const MarkerState<Scalar>& mj, Rows<Scalar>& out, int r,
                                           bool rates) {
   const auto k = static_cast<std::size_t>(r);
-  const auto& a = mi.axis(ai);
+  const auto& a = mi.template axis<AI>();
   const Vec3<Scalar> d = mj.origin.value - mi.origin.value;
   out.phi[k] = a.value.dot(d);
-  out.i[k].add_axis(mi, ai, d);
+  out.phi_t[k] = Scalar(0);
+  out.i[k].template set_axis<AI>(mi, d);
   out.i[k].add_origin(mi, a.value, Scalar(-1));
-  out.j[k].add_origin(mj, a.value);
+  out.j[k].set_origin(mj, a.value);
+  out.conv[k] = Scalar(0);
   if (rates) {
     const Vec3<Scalar> d_dot = mj.origin.velocity - mi.origin.velocity;
     out.conv[k] = a.convective.dot(d) + Scalar(2) * a.velocity.dot(d_dot) +
@@ -267,13 +288,18 @@ template <class Scalar>
 FLEXSTRESS_NOINLINE_FLATTEN void coincident(const MarkerState<Scalar>& mi,
                                             const MarkerState<Scalar>& mj, Rows<Scalar>& out, int r,
                                             bool rates) {
-  for (int c = 0; c < 3; ++c) {
+  const auto row = [&](auto component) {
+    constexpr int c = decltype(component)::value;
     const auto k = static_cast<std::size_t>(r + c);
     out.phi[k] = mj.origin.value(c) - mi.origin.value(c);
-    out.i[k].add_origin_component(mi, c, Scalar(-1));
-    out.j[k].add_origin_component(mj, c, Scalar(1));
-    if (rates) out.conv[k] = mj.origin.convective(c) - mi.origin.convective(c);
-  }
+    out.phi_t[k] = Scalar(0);
+    out.i[k].template set_origin_component<c>(mi, Scalar(-1));
+    out.j[k].template set_origin_component<c>(mj, Scalar(1));
+    out.conv[k] = rates ? mj.origin.convective(c) - mi.origin.convective(c) : Scalar(0);
+  };
+  row(std::integral_constant<int, 0>{});
+  row(std::integral_constant<int, 1>{});
+  row(std::integral_constant<int, 2>{});
 }
 
 /// |r_j - r_i|^2 - L^2 = 0.
@@ -284,8 +310,10 @@ FLEXSTRESS_NOINLINE_FLATTEN void distance(const MarkerState<Scalar>& mi,
   const auto k = static_cast<std::size_t>(r);
   const Vec3<Scalar> d = mj.origin.value - mi.origin.value;
   out.phi[k] = d.squaredNorm() - length * length;
-  out.i[k].add_origin(mi, d, Scalar(-2));
-  out.j[k].add_origin(mj, d, Scalar(2));
+  out.phi_t[k] = Scalar(0);
+  out.i[k].set_origin(mi, d, Scalar(-2));
+  out.j[k].set_origin(mj, d, Scalar(2));
+  out.conv[k] = Scalar(0);
   if (rates) {
     const Vec3<Scalar> d_dot = mj.origin.velocity - mi.origin.velocity;
     out.conv[k] = Scalar(2) * d_dot.squaredNorm() +
@@ -310,40 +338,40 @@ void evaluate_joint_rows(JointKind kind, const MarkerState<Scalar>& i, const Mar
                          Scalar length, const MotionValue<Scalar>& law, JointRows<Scalar>& out,
                          bool rates = true) {
   namespace jr = joint_rows;
-  out.reset(joint_equations(kind));
+  out.count = joint_equations(kind);
   switch (kind) {
     case JointKind::spherical: jr::coincident(i, j, out, 0, rates); return;
     case JointKind::revolute:
       jr::coincident(i, j, out, 0, rates);
-      jr::perpendicular(i, 2, j, 0, out, 3, rates);
-      jr::perpendicular(i, 2, j, 1, out, 4, rates);
+      jr::perpendicular<2, 0>(i, j, out, 3, rates);
+      jr::perpendicular<2, 1>(i, j, out, 4, rates);
       return;
     case JointKind::universal:
       jr::coincident(i, j, out, 0, rates);
-      jr::perpendicular(i, 2, j, 2, out, 3, rates);
+      jr::perpendicular<2, 2>(i, j, out, 3, rates);
       return;
     case JointKind::cylindrical:
-      jr::in_plane(i, 0, j, out, 0, rates);
-      jr::in_plane(i, 1, j, out, 1, rates);
-      jr::perpendicular(i, 2, j, 0, out, 2, rates);
-      jr::perpendicular(i, 2, j, 1, out, 3, rates);
+      jr::in_plane<0>(i, j, out, 0, rates);
+      jr::in_plane<1>(i, j, out, 1, rates);
+      jr::perpendicular<2, 0>(i, j, out, 2, rates);
+      jr::perpendicular<2, 1>(i, j, out, 3, rates);
       return;
     case JointKind::prismatic:
-      jr::in_plane(i, 0, j, out, 0, rates);
-      jr::in_plane(i, 1, j, out, 1, rates);
-      jr::perpendicular(i, 2, j, 0, out, 2, rates);
-      jr::perpendicular(i, 2, j, 1, out, 3, rates);
-      jr::perpendicular(i, 0, j, 1, out, 4, rates);
+      jr::in_plane<0>(i, j, out, 0, rates);
+      jr::in_plane<1>(i, j, out, 1, rates);
+      jr::perpendicular<2, 0>(i, j, out, 2, rates);
+      jr::perpendicular<2, 1>(i, j, out, 3, rates);
+      jr::perpendicular<0, 1>(i, j, out, 4, rates);
       return;
     case JointKind::fixed:
       jr::coincident(i, j, out, 0, rates);
-      jr::perpendicular(i, 2, j, 0, out, 3, rates);
-      jr::perpendicular(i, 2, j, 1, out, 4, rates);
-      jr::perpendicular(i, 0, j, 1, out, 5, rates);
+      jr::perpendicular<2, 0>(i, j, out, 3, rates);
+      jr::perpendicular<2, 1>(i, j, out, 4, rates);
+      jr::perpendicular<0, 1>(i, j, out, 5, rates);
       return;
     case JointKind::distance: jr::distance(i, j, length, out, 0, rates); return;
     case JointKind::prismatic_driver:
-      jr::in_plane(i, 2, j, out, 0, rates);
+      jr::in_plane<2>(i, j, out, 0, rates);
       out.phi[0] -= law.value;
       out.phi_t[0] = -law.rate;
       out.conv[0] -= law.acceleration;
@@ -359,9 +387,9 @@ void evaluate_joint_rows(JointKind kind, const MarkerState<Scalar>& i, const Mar
       const Scalar sdd = -s * law.rate * law.rate + c * law.acceleration;
       const Scalar cdd = -c * law.rate * law.rate - s * law.acceleration;
       JointRows<Scalar> ab;
-      ab.reset(2);
-      jr::perpendicular(i, 0, j, 0, ab, 0, true);  // x_i . x_j = cos(theta)
-      jr::perpendicular(i, 1, j, 0, ab, 1, true);  // y_i . x_j = sin(theta)
+      ab.count = 2;
+      jr::perpendicular<0, 0>(i, j, ab, 0, true);  // x_i . x_j = cos(theta)
+      jr::perpendicular<1, 0>(i, j, ab, 1, true);  // y_i . x_j = sin(theta)
       const Scalar a_dot = jr::perpendicular_rate(i, 0, j, 0);
       const Scalar b_dot = jr::perpendicular_rate(i, 1, j, 0);
       out.phi[0] = -(s * ab.phi[0] - c * ab.phi[1]);

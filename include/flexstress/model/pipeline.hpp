@@ -5,6 +5,7 @@
 // for its mode count (model/body_kernels.hpp); nothing here allocates.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Core>
@@ -100,48 +101,48 @@ template <class Scalar>
 void update_constraints(const Model<Scalar>& model, Data<Scalar>& d, bool rates = true) {
   JointRows<Scalar>& rows = d.joint_rows;
   const auto& joints = model.joints();
+  const auto& bodies = model.bodies();
+  const auto& markers = model.markers();
+  const bool ground_moves = model.ground_motion().moving;
+  Scalar* const phi = d.phi.data();
+  Scalar* const phi_t = d.phi_t.data();
+  Scalar* const conv = d.conv.data();
+  Scalar* const jacobian = d.jacobian.data();
   for (std::size_t k = 0; k < joints.size(); ++k) {
     const auto& j = joints[k];
     const int n = j.equations;
-    const auto& bodies = model.bodies();
+    const auto* bi = j.body_i >= 0 ? &bodies[static_cast<std::size_t>(j.body_i)] : nullptr;
+    const auto* bj = j.body_j >= 0 ? &bodies[static_cast<std::size_t>(j.body_j)] : nullptr;
     if (!d.joint_active[k]) {
-      d.phi.segment(j.row, n).setZero();
-      d.phi_t.segment(j.row, n).setZero();
-      d.conv.segment(j.row, n).setZero();
-      if (j.body_i >= 0)
-        d.jacobian.segment(j.jac_i, n * bodies[static_cast<std::size_t>(j.body_i)].nv).setZero();
-      if (j.body_j >= 0)
-        d.jacobian.segment(j.jac_j, n * bodies[static_cast<std::size_t>(j.body_j)].nv).setZero();
+      std::fill_n(phi + j.row, n, Scalar(0));
+      std::fill_n(phi_t + j.row, n, Scalar(0));
+      std::fill_n(conv + j.row, n, Scalar(0));
+      if (bi) std::fill_n(jacobian + j.jac_i, n * bi->nv, Scalar(0));
+      if (bj) std::fill_n(jacobian + j.jac_j, n * bj->nv, Scalar(0));
       continue;
     }
-    const auto& mi = model.markers()[static_cast<std::size_t>(j.marker_i)];
-    const auto& mj = model.markers()[static_cast<std::size_t>(j.marker_j)];
+    const auto& mi = markers[static_cast<std::size_t>(j.marker_i)];
+    const auto& mj = markers[static_cast<std::size_t>(j.marker_j)];
     const MotionValue<Scalar> law = j.law >= 0 ? law_value(d, j.law, d.t) : MotionValue<Scalar>();
     evaluate_joint_rows(j.kind, d.markers[static_cast<std::size_t>(mi.slot)],
                         d.markers[static_cast<std::size_t>(mj.slot)], j.length, law, rows, rates);
-    for (int r = 0; r < n; ++r) {
-      d.phi(j.row + r) = rows.phi[static_cast<std::size_t>(r)];
-      d.phi_t(j.row + r) = rows.phi_t[static_cast<std::size_t>(r)];
-      d.conv(j.row + r) = rows.conv[static_cast<std::size_t>(r)];
-    }
-    if (model.ground_motion().moving && (j.body_i < 0 || j.body_j < 0)) {
+    std::copy_n(rows.phi.begin(), n, phi + j.row);
+    std::copy_n(rows.phi_t.begin(), n, phi_t + j.row);
+    std::copy_n(rows.conv.begin(), n, conv + j.row);
+    if (ground_moves && (!bi || !bj)) {
       // A moving ground's side: its rows times the ground's twist [R_dot; w (ground frame)].
       Eigen::Matrix<Scalar, 6, 1> twist;
       twist << d.ground.velocity, d.ground.rotation.transpose() * d.ground.omega;
-      const auto& ground_side = j.body_i < 0 ? rows.i : rows.j;
+      const auto& ground_side = bi ? rows.j : rows.i;
       for (int r = 0; r < n; ++r)
-        d.phi_t(j.row + r) += ground_side[static_cast<std::size_t>(r)].rigid.dot(twist);
+        phi_t[j.row + r] += ground_side[static_cast<std::size_t>(r)].rigid.dot(twist);
     }
-    if (j.body_i >= 0) {
-      const auto& b = bodies[static_cast<std::size_t>(j.body_i)];
-      b.kernels->jacobian_rows(b.holder.get(), mi.local, joint_parts_i(j.kind), rows.i.data(), n,
-                               d.jacobian.data() + j.jac_i);
-    }
-    if (j.body_j >= 0) {
-      const auto& b = bodies[static_cast<std::size_t>(j.body_j)];
-      b.kernels->jacobian_rows(b.holder.get(), mj.local, joint_parts_j(j.kind), rows.j.data(), n,
-                               d.jacobian.data() + j.jac_j);
-    }
+    if (bi)
+      bi->kernels->jacobian_rows(bi->holder.get(), mi.local, joint_parts_i(j.kind), rows.i.data(),
+                                 n, jacobian + j.jac_i);
+    if (bj)
+      bj->kernels->jacobian_rows(bj->holder.get(), mj.local, joint_parts_j(j.kind), rows.j.data(),
+                                 n, jacobian + j.jac_j);
   }
 }
 

@@ -16,7 +16,11 @@
 #include <flexstress/fe/stress_recovery.hpp>
 #include <flexstress/stress/sub_model_inertia.hpp>
 
-#include "../../examples/crane/crane_model.hpp"
+#include <flexstress/reduction/modal_geometric_stiffness.hpp>
+#include <flexstress/stress/section_force_modes.hpp>
+#include <flexstress/stress/sub_model_inertia.hpp>
+
+#include "../../examples/crane/crane_precompute.hpp"
 
 namespace study {
 
@@ -203,7 +207,7 @@ RunResult run_crane(const Knobs& k) {
   const auto& cr = *made;
   const Model<Scalar>& model = cr.model;
   const crane::Detail& detail = cr.detail;
-  const stress::SubModel& sub = *detail.sub;
+  const stress::SubModel& sub = *detail.model->sub;
   const Index hot_row = detail.hot_spot;
   const MatrixXd phi_b = detail.boundary_modes.leftCols(k.modes);
   MatrixS influence, phi_b_s;
@@ -212,7 +216,7 @@ RunResult run_crane(const Knobs& k) {
   VectorS field;
   NodalHotSpot nodal;
   if (k.recovery == Recovery::influence) {
-    auto rows = detail.outputs.rows(sub);
+    auto rows = detail.model->outputs.rows(sub);
     if (!rows) {
       r.error = rows.error().what();
       return r;
@@ -229,8 +233,8 @@ RunResult run_crane(const Knobs& k) {
     }
     modes = std::move(*m);
     field.resize(modes.modes.rows());
-    nodal = NodalHotSpot::build(modes.nodes, sub.mesh(), detail.mesh.weld_toe_x,
-                                detail.mesh.flange_surface_y, k.spec.wall);
+    nodal = NodalHotSpot::build(modes.nodes, sub.mesh(), detail.model->mesh.weld_toe_x,
+                                detail.model->mesh.flange_surface_y, k.spec.wall);
     if (nodal.x.size() < 2) {
       r.error = "no nodes along the hot-spot line";
       return r;
@@ -239,7 +243,7 @@ RunResult run_crane(const Knobs& k) {
   Eigen::Matrix<Scalar, 1, 12> inertia_row = Eigen::Matrix<Scalar, 1, 12>::Zero();
   const bool own_inertia = k.submodel_inertia && k.recovery != Recovery::fused;
   if (own_inertia) {
-    auto in = stress::SubModelInertia<Scalar>::build(sub, detail.outputs);
+    auto in = stress::SubModelInertia<Scalar>::build(sub, detail.model->outputs);
     if (!in) {
       r.error = in.error().what();
       return r;
@@ -268,7 +272,7 @@ RunResult run_crane(const Knobs& k) {
       case Recovery::resolve: {
         const VectorXd u =
             sub.solve(phi_b * modal_coordinates(model, d, cr.boom_body).template cast<double>());
-        hot = (*detail.outputs.rows(sub, u))(hot_row, 0);
+        hot = (*detail.model->outputs.rows(sub, u))(hot_row, 0);
         break;
       }
     }

@@ -32,7 +32,11 @@
 
 #include <flexstress/stress/sub_model_inertia.hpp>
 
-#include "../../examples/crane/crane_model.hpp"
+#include <flexstress/reduction/modal_geometric_stiffness.hpp>
+#include <flexstress/stress/section_force_modes.hpp>
+#include <flexstress/stress/sub_model_inertia.hpp>
+
+#include "../../examples/crane/crane_precompute.hpp"
 
 using namespace flexstress;
 
@@ -99,7 +103,8 @@ Result<CraneWithInertia> make_crane_with_inertia(const crane::CraneSpec& spec,
   options.modes = kModes;
   auto made = crane::make_crane(spec, options, t, ds);
   if (!made) return made.error();
-  auto inertia = stress::SubModelInertia<double>::build(*made->detail.sub, made->detail.outputs);
+  auto inertia =
+      stress::SubModelInertia<double>::build(*made->detail.model->sub, made->detail.model->outputs);
   if (!inertia) return inertia.error();
   return CraneWithInertia{std::move(*made), std::move(*inertia)};
 }
@@ -198,7 +203,7 @@ int main(int argc, char** argv) {
   CraneT& crf = made_force->crane;
   const auto& inertia_force = made_force->inertia;
   std::printf("cranes (24 modes, sub-model density %g, %zu bricks): %.0f ms\n", opt.density,
-              cr.detail.sub->mesh().hexes().size(), ms_since(t0));
+              cr.detail.model->sub->mesh().hexes().size(), ms_since(t0));
   const Model<double>& model = cr.model;
   const BodyId boom_body = cr.boom_body;
   const Index hot_row = cr.detail.hot_spot, nominal_row = cr.detail.nominal;
@@ -307,7 +312,7 @@ int main(int argc, char** argv) {
     const Vector3d payload_point(spec.payload_x, 0, 0);
     const Index node_payload = mesh.add_node(payload_point);
     mesh.add_rigid_link(node_payload, whole->section_nodes(spec.payload_x));
-    auto modes = SectionModes::build(cr.boom, {&whole->mesh, &cr.detail.mesh.mesh});
+    auto modes = SectionModes::build(cr.boom, {&whole->mesh, &cr.detail.model->mesh.mesh});
     if (!modes) {
       std::fprintf(stderr, "whole_boom_reference: %s\n", modes.error().what().c_str());
       return 1;
@@ -380,7 +385,7 @@ int main(int argc, char** argv) {
     }
     MatrixXd response(dofs.size(), loads.cols());
     for (Index k = 0; k < loads.cols(); ++k) response.col(k) = boom->load_response(loads.col(k));
-    auto rows = cr.detail.outputs.rows(*boom, response);
+    auto rows = cr.detail.model->outputs.rows(*boom, response);
     if (!rows) {
       std::fprintf(stderr, "whole_boom_reference: %s\n", rows.error().what().c_str());
       return 1;

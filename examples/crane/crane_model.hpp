@@ -3,10 +3,15 @@
 // a valve-driven cylinder, and the welded detail D as a sub-model whose stresses come per step
 // from fused modal rows, with a damage meter on its hot spot. Any boom mode count the reduction
 // offers. Every number and every choice the paper leaves open is in docs/crane.md.
+//
+// This header holds the model's side only. What the crane precomputes (the boom's reduction, the
+// detail's sub-model) is made in crane_precompute.cpp, the one unit that parses the FE, reduction
+// and stress headers for it; the other units see its results as plain data.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -14,14 +19,8 @@
 
 #include <flexstress/fatigue/damage.hpp>
 #include <flexstress/fatigue/sn_curve.hpp>
-#include <flexstress/fe/rhs_attachment_mesh.hpp>
 #include <flexstress/model/all.hpp>
-#include <flexstress/reduction/modal_geometric_stiffness.hpp>
-#include <flexstress/stress/host_point.hpp>
-#include <flexstress/stress/section_force_modes.hpp>
-#include <flexstress/stress/stress_outputs.hpp>
-#include <flexstress/stress/sub_model.hpp>
-#include <flexstress/stress/sub_model_inertia.hpp>
+#include <flexstress/reduction/modal_geometric_stiffness_data.hpp>
 
 #include "boom_model.hpp"
 
@@ -105,18 +104,41 @@ inline PartsLayout parts_layout(const CraneSpec& spec) {
   return l;
 }
 
+/// The detail's sub-model, its mesh and its stress outputs (crane_precompute.hpp).
+struct DetailModel;
+
 /// The welded detail D: its sub-model, the read-outs on it and their fused rows in the boom's
 /// modal coordinates.
 struct Detail {
-  fe::RhsAttachmentMesh mesh;
-  std::optional<stress::SubModel> sub;
-  stress::StressOutputs outputs;
+  /// The sub-model and what it is made of: immutable once made, so crane copies share it.
+  std::shared_ptr<const DetailModel> model;
   MatrixXd boundary_modes;  ///< Phi_b of the two sub-model ends (12 x modes)
   MatrixXd fused;           ///< outputs x modes
   std::vector<std::string> names;
   Index hot_spot = -1, paper_hot_spot = -1, gauge_04t = -1, gauge_10t = -1, nominal = -1;
   Index toe_line_first = -1, toe_line_count = 0;
+  Index num_bricks = 0;  ///< of the sub-model's mesh
 };
+
+/// What the crane precomputes before its model is assembled: the reduced boom, the detail, and
+/// what the options ask for besides.
+struct Precomputed {
+  Boom boom;
+  Detail detail;
+  /// K_G of the boom under its inertial and gravity loads, A and B clamped for the load cases
+  /// (CraneOptions::geometric_stiffening).
+  std::optional<reduction::ModalGeometricStiffness> boom_stiffening;
+  /// The detail's own weight and inertia in its outputs, outputs x 12 (CraneOptions::with_inertia;
+  /// stress/sub_model_inertia.hpp).
+  MatrixXd detail_inertia;
+};
+
+/// Reduces the boom with `options.modes` modes and makes the detail on it (crane_precompute.cpp).
+Result<Precomputed> precompute_crane(const CraneSpec& spec, const CraneOptions& options);
+
+/// Writes the detail's sub-model, driven by the boom's modal coordinates p (its first p.size()
+/// modes), with its displacement and stress fields as a VTK file (crane_precompute.cpp).
+Status write_detail_vtu(const Detail& detail, const VectorXd& p, const std::string& path);
 
 /// The crane: its model, the state it starts from (static equilibrium at the cycle's start) and
 /// the handles a run reads. Scalar: the model's (float for the accuracy study's float runs).

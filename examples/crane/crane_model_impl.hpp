@@ -1,6 +1,7 @@
-// The crane's assembly (crane_model.hpp): its parts, the welded detail's sub-model and outputs,
-// and the two drives. Included by crane_model.cpp (double) and crane_model_float.cpp (float, for
-// the accuracy study) only, so that the programs that build a crane do not each compile it.
+// The crane's assembly (crane_model.hpp): its parts, the welded detail's outputs and the two
+// drives, on what precompute_crane made. Included by crane_model.cpp (double) and
+// crane_model_float.cpp (float, for the accuracy study) only, so that the programs that build a
+// crane do not each compile it.
 #pragma once
 
 #include "crane_model.hpp"
@@ -17,21 +18,22 @@ struct Parts {
 };
 
 /// Bodies, markers and the four joints of the crane (A, C, B and the cylinder's slide), in the
-/// order the step's matrices follow: boom, cylinder, rod; and the effects `o` asks for.
+/// order the step's matrices follow: boom, cylinder, rod; and the effects `o` asks for. The boom's
+/// geometric stiffness comes from precompute_crane (Precomputed::boom_stiffening).
 template <class Scalar>
 Status add_crane_parts(ModelBuilder<Scalar>& b, const CraneSpec& spec, const Boom& boom,
-                       const CraneOptions& o, Parts& p) {
+                       const CraneOptions& o, Parts& p,
+                       const reduction::ModalGeometricStiffness* boom_stiffening = nullptr) {
   using V3 = Vec3<Scalar>;
   using M3 = Mat3<Scalar>;
   p.boom = b.add_flexible_body("boom", boom.data, o.modes);
   if (!o.modal_damping) b.set_damping_ratio(p.boom, Scalar(0));
   if (o.geometric_stiffening) {
-    // The boom's inertial loads leave it through A and B: both clamped for the stress states
-    // (docs/crane.md).
-    auto g = reduction::modal_geometric_stiffness(boom.mesh, boom.data,
-                                                  reduction::clamp_interface_nodes(boom.data));
-    if (!g) return g.error();
-    b.add_geometric_stiffening(p.boom, *g);
+    if (boom_stiffening == nullptr)
+      return make_error(ErrorCode::invalid_argument,
+                        "crane: geometric stiffening needs the boom's geometric stiffness "
+                        "(precompute_crane)");
+    b.add_geometric_stiffening(p.boom, *boom_stiffening);
   }
   // Cylinder and rod on the support and the boom (parts_layout says where).
   const PartsLayout l = parts_layout(spec);
@@ -65,19 +67,13 @@ Status add_crane_parts(ModelBuilder<Scalar>& b, const CraneSpec& spec, const Boo
   return Status::success();
 }
 
-/// The detail's sub-model, read-outs and fused rows (docs/crane.md); crane_detail.cpp.
-Result<Detail> make_detail(const CraneSpec& spec, const Boom& boom, int modes);
-
-/// The detail's outputs on the boom, its hot spot's damage meter and (optionally) its inertia.
+/// The detail's outputs on the boom, its hot spot's damage meter and, when `inertia` has rows,
+/// the detail's own weight and inertia in them (Precomputed::detail_inertia).
 template <class Scalar>
-Status add_detail_outputs(ModelBuilder<Scalar>& b, const Detail& d, BodyId boom, bool with_inertia,
-                          OutputRange& outputs, MeterId& meter) {
+Status add_detail_outputs(ModelBuilder<Scalar>& b, const Detail& d, BodyId boom,
+                          const MatrixXd& inertia, OutputRange& outputs, MeterId& meter) {
   outputs = b.add_stress_outputs("detail D", boom, d.fused, d.names);
-  if (with_inertia) {
-    auto inertia = stress::SubModelInertia<>::build(*d.sub, d.outputs);
-    if (!inertia) return inertia.error();
-    b.add_output_inertia(outputs, inertia->rows());
-  }
+  if (inertia.rows() > 0) b.add_output_inertia(outputs, inertia);
   auto empty = make_damage_meter<Scalar>();
   if (!empty) return empty.error();
   meter = b.add_damage_meter("hot spot (MPa)", outputs[int(d.hot_spot)], *empty,
@@ -97,12 +93,12 @@ Result<BasicCrane<Scalar>> make_crane(const CraneSpec& spec, const CraneOptions&
   if (options.modes < 1 || options.modes > max_runtime_modes)
     return make_error(ErrorCode::invalid_argument, "crane: ", options.modes,
                       " boom modes; from 1 to ", max_runtime_modes);
-  auto boom = make_boom(spec, options.modes);
-  if (!boom) return boom.error();
-  cr.boom = std::move(*boom);
-  auto detail = assembly::make_detail(spec, cr.boom, options.modes);
-  if (!detail) return detail.error();
-  cr.detail = std::move(*detail);
+  auto pre = precompute_crane(spec, options);
+  if (!pre) return pre.error();
+  cr.boom = std::move(pre->boom);
+  cr.detail = std::move(pre->detail);
+  const reduction::ModalGeometricStiffness* stiffening =
+      pre->boom_stiffening ? &*pre->boom_stiffening : nullptr;
   cr.initial_length = (spec.b - spec.c).norm();
 
   // The stroke-driven crane: the driver slides the rod along the cylinder's z by the table.
@@ -116,14 +112,14 @@ Result<BasicCrane<Scalar>> make_crane(const CraneSpec& spec, const CraneOptions&
   if (!law) return law.error();
   ModelBuilder<Scalar> driven;
   assembly::Parts parts;
-  if (Status st = assembly::add_crane_parts(driven, spec, cr.boom, options, parts); !st)
+  if (Status st = assembly::add_crane_parts(driven, spec, cr.boom, options, parts, stiffening); !st)
     return st.error();
   const JointId driver =
       driven.add_driver("stroke", JointKind::prismatic_driver, parts.cylinder_origin,
                         parts.rod_origin, MotionLaw<Scalar>::from_table(std::move(*law)));
   OutputRange outputs;
   MeterId meter;
-  if (Status st = assembly::add_detail_outputs(driven, cr.detail, parts.boom, options.with_inertia,
+  if (Status st = assembly::add_detail_outputs(driven, cr.detail, parts.boom, pre->detail_inertia,
                                                outputs, meter);
       !st)
     return st.error();
@@ -193,12 +189,12 @@ Result<BasicCrane<Scalar>> make_crane(const CraneSpec& spec, const CraneOptions&
   hp.flow_gain = Scalar(gain);
   ModelBuilder<Scalar> valved;
   assembly::Parts same;
-  if (Status st = assembly::add_crane_parts(valved, spec, cr.boom, options, same); !st)
+  if (Status st = assembly::add_crane_parts(valved, spec, cr.boom, options, same, stiffening); !st)
     return st.error();
   cr.hydraulic_cylinder = valved.add_hydraulic_cylinder(
       "cylinder", same.cylinder_origin, same.rod_origin, hp,
       MotionLaw<Scalar>::from_table(std::move(*command)), Scalar(p1), Scalar(p2));
-  if (Status st = assembly::add_detail_outputs(valved, cr.detail, same.boom, options.with_inertia,
+  if (Status st = assembly::add_detail_outputs(valved, cr.detail, same.boom, pre->detail_inertia,
                                                outputs, meter);
       !st)
     return st.error();

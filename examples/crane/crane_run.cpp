@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include <flexstress/fe/vtk_writer.hpp>
+#include <flexstress/fe/beam_section.hpp>
 
 namespace crane {
 
@@ -232,17 +232,15 @@ int run(const RunOptions& o) {
     return 1;
   }
   // The sub-model at the peak, for ParaView (and docs/crane.md's picture).
-  const VectorXd u_peak = dt.sub->solve(dt.boundary_modes.leftCols(n) * p_peak);
-  auto fields = fe::standard_fields(dt.sub->mesh(), dt.sub->model().dofs, u_peak);
-  if (fields) (void)fe::write_vtu(o.output + "/detail_d_peak.vtu", dt.sub->mesh(), *fields);
+  (void)write_detail_vtu(dt, p_peak, o.output + "/detail_d_peak.vtu");
   write_plot(o.output, hydraulic ? 12 + n : 0);  // p_cap_bar: column 12 + n
 
   const double damage = meter_damage(d, cr.hot_spot_meter);
   auto life = fatigue::predict_life(damage, t_end - o.t.front());
   std::printf(
       "crane: FFRF boom with %d modes, %zu-brick sub-model at detail D, %s cycle of %g s%s\n", n,
-      dt.mesh.mesh.hexes().size(), o.stroke_file.empty() ? "synthetic" : "user",
-      t_end - o.t.front(), hydraulic ? ", hydraulic drive (valve commands from the cycle)" : "");
+      dt.num_bricks, o.stroke_file.empty() ? "synthetic" : "user", t_end - o.t.front(),
+      hydraulic ? ", hydraulic drive (valve commands from the cycle)" : "");
   if (hydraulic)
     std::printf("  hydraulics: cap side %.1f to %.1f bar, largest stroke %.4f m (planned %.4f m)\n",
                 p_cap_min, p_cap_max, stroke_max, *std::max_element(o.ds.begin(), o.ds.end()));

@@ -24,6 +24,7 @@
 
 #include <flexstress/model/all.hpp>
 
+#include "../../examples/crane/boom_reduction.hpp"
 #include "../../examples/crane/crane_model_impl.hpp"
 #include "../../examples/four_bar_chain/four_bar_chain.hpp"
 #include "../../examples/spin_up_beam/spin_up_model.hpp"
@@ -509,7 +510,8 @@ TEST_CASE("stress suite: the 40-bar chain (IFToMM A02) through its singular conf
 // the cylinder and its rod, driven through the synthetic 11 s work cycle (lift 0.2 m, hold with
 // two corrections, lower), from static equilibrium. Compared: the boom tip's deflection from the
 // boom's tangent at its hinge A (in the plane). (The hot-spot stress would need the welded
-// detail's sub-model, examples/crane/crane_detail.cpp, which this test target does not compile.)
+// detail's sub-model, examples/crane/crane_precompute.cpp, which this test target does not
+// compile.)
 TEST_CASE("stress suite: the crane's work cycle, boom tip deflection" *
           doctest::test_suite("long")) {
   const crane::CraneSpec spec;

@@ -1,4 +1,4 @@
-// The crane's boom (examples/crane/boom_model.hpp): the reduced body's lowest elastic
+// The crane's boom (examples/crane/boom_reduction.hpp): the reduced body's lowest elastic
 // frequencies against the full beam model it was reduced from. Craig-Bampton reduction is a
 // Rayleigh-Ritz projection, so each reduced frequency is an upper bound of the full model's
 // (Craig & Kurdila, Fundamentals of Structural Dynamics, 2nd ed., sec. 17.3), and with the
@@ -11,7 +11,7 @@
 #include <flexstress/fe/assembly.hpp>
 #include <flexstress/fe/eigen_solver.hpp>
 
-#include "../../examples/crane/boom_model.hpp"
+#include "../../examples/crane/boom_reduction.hpp"
 
 namespace test_crane_boom {
 

@@ -324,11 +324,32 @@ struct BodyKernelImpl {
   }
   static void add_gram(int nv, const Scalar* rows, int count, const Scalar* other, int nc,
                        Scalar alpha, Scalar* s, int ld) {
-    for (int r = 0; r < count; ++r) {
-      const Eigen::Map<const VecV> b(rows + r * nv, nv);
-      const Scalar* c = other + r * nc;
-      for (int k = 0; k < nc; ++k)
-        if (c[k] != Scalar(0)) Eigen::Map<VecV>(s + k * ld, nv).noalias() += (alpha * c[k]) * b;
+    switch (count) {  // a joint has 1 to 6 equations: the row count at compile time too
+      case 1: return add_gram<1>(nv, rows, other, nc, alpha, s, ld);
+      case 2: return add_gram<2>(nv, rows, other, nc, alpha, s, ld);
+      case 3: return add_gram<3>(nv, rows, other, nc, alpha, s, ld);
+      case 4: return add_gram<4>(nv, rows, other, nc, alpha, s, ld);
+      case 5: return add_gram<5>(nv, rows, other, nc, alpha, s, ld);
+      case 6: return add_gram<6>(nv, rows, other, nc, alpha, s, ld);
+      default:
+        for (int r = 0; r < count; ++r) {
+          const Eigen::Map<const VecV> b(rows + r * nv, nv);
+          for (int k = 0; k < nc; ++k)
+            Eigen::Map<VecV>(s + k * ld, nv).noalias() += (alpha * other[r * nc + k]) * b;
+        }
+    }
+  }
+  /// Column k of alpha B^T C is (alpha B^T) times column k of C: one fixed-size product per
+  /// column, so each column of s is read and written once.
+  template <int Count>
+  static void add_gram(int nv, const Scalar* rows, const Scalar* other, int nc, Scalar alpha,
+                       Scalar* s, int ld) {
+    using Rows = BoundedMat<Scalar, Body::nv, Count, ModalSizes<Scalar, N>::nv_bound, Count>;
+    const Rows scaled = alpha * Eigen::Map<const Rows>(rows, nv, Count);  // B^T, column-major
+    for (int k = 0; k < nc; ++k) {
+      Eigen::Matrix<Scalar, Count, 1> c;  // a local copy: s cannot alias it, so each
+      for (int r = 0; r < Count; ++r) c(r) = other[r * nc + k];  // entry is loaded once
+      Eigen::Map<VecV>(s + k * ld, nv).noalias() += scaled.lazyProduct(c);
     }
   }
 

@@ -115,7 +115,7 @@ bool equilibrium_iterations(const Model<Scalar>& model, Data<Scalar>& d,
     if (applied && (it == 0 || it % 10 == 0)) {
       const Eigen::MatrixXd k_applied = applied_stiffness(model, d);
       typename Data<Scalar>::MatrixX block = Data<Scalar>::MatrixX::Zero(nv, nv);
-      set_mass_blocks(model, d, block);
+      start_iteration_matrix(model, d, block);
       const Eigen::MatrixXd mass = block.template cast<double>();
       block.setZero();
       add_modal_stiffness_damping(model, d, block, Scalar(1), Scalar(0));
@@ -138,9 +138,8 @@ bool equilibrium_iterations(const Model<Scalar>& model, Data<Scalar>& d,
     }
     evaluate(model, d);
     if (!applied && (it == 0 || it % 10 == 0)) {
-      in.iteration.setZero();
-      set_mass_blocks(model, d, in.iteration);
-      in.iteration *= c;
+      start_iteration_matrix(model, d, in.iteration);
+      scale_body_blocks(model, in.iteration, c);
       add_modal_stiffness_damping(model, d, in.iteration, Scalar(1), Scalar(0));
       // alpha B^T B gets penalty_factor times the largest diagonal of K + c M over the largest
       // squared column norm of B (flexible joint rows carry node rotations of order 100 per
@@ -236,7 +235,7 @@ Result<Linearization> linearize(const Model<Scalar>& model, Data<Scalar>& d, dou
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(nv, nv);
   {
     typename Data<Scalar>::MatrixX ms = Data<Scalar>::MatrixX::Zero(nv, nv);
-    set_mass_blocks(model, d, ms);
+    start_iteration_matrix(model, d, ms);
     m = ms.template cast<double>();
   }
   const Eigen::MatrixXd b = dense_jacobian(model, d);

@@ -66,8 +66,7 @@ void project_explicit(const Model<Scalar>& model, Data<Scalar>& d,
                       const ExplicitSettings<Scalar>& s) {
   auto& in = d.integrator;
   evaluate(model, d);
-  in.iteration.setZero();
-  set_mass_blocks(model, d, in.iteration);
+  start_iteration_matrix(model, d, in.iteration);
   in.penalty = s.penalty_factor * max_abs(in.iteration.diagonal());
   add_constraint_gram(model, d, in.penalty, in.iteration);
   in.cholesky.compute(in.iteration);

@@ -137,7 +137,7 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
       violation = std::numeric_limits<Scalar>::quiet_NaN();
       continue;
     }
-    in.q_save = d.q;
+    copy_same_size(in.q_save, d.q);
     for (int halving = 0;; ++halving) {
       integrate_coordinates(model, d.q, in.dx);
       update_kinematics(model, d);
@@ -150,7 +150,7 @@ Status initialize(const Model<Scalar>& model, Data<Scalar>& d, int max_iteration
         violation = trial;
         break;
       }
-      d.q = in.q_save;
+      copy_same_size(d.q, in.q_save);
       in.dx *= Scalar(0.5);
     }
   }
@@ -219,17 +219,17 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
         std::max(Scalar(1), std::min(in.penalty_boost, s.max_penalty_factor / s.penalty_factor));
   in.penalty_boost_start = in.penalty_boost;
   in.boost_age_start = in.boost_age;
-  in.q_n = d.q;
-  in.v_n = d.v;
-  in.vd_n = d.v_dot;
-  in.a_n = d.a;
+  copy_same_size(in.q_n, d.q);
+  copy_same_size(in.v_n, d.v);
+  copy_same_size(in.vd_n, d.v_dot);
+  copy_same_size(in.a_n, d.a);
   const Scalar t_n = d.t;
   // The floor is the coordinates' round-off, which grows with their size (a chain 40 m long).
   in.tol_x = std::max(std::max(s.acceleration_tolerance,
                                s.relative_acceleration_tolerance * in.acceleration_scale) /
                           in.beta_prime,
                       s.position_floor * std::max(Scalar(1), max_abs(in.q_n)));
-  in.lambda_star = in.lambda_last;
+  copy_same_size(in.lambda_star, in.lambda_last);
   // Predictor: v_dot and lambda extrapolated linearly from the last two steps.
   if (in.has_previous && s.extrapolate_predictor && in.predict_linear)
     d.v_dot = Scalar(2) * in.vd_n - in.vd_prev;
@@ -286,10 +286,10 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
       stale_for_next = stale_for_next || s.refactor_after_stale_step;
     } else if (residual_rose) {
       stale_for_next = stale_for_next || s.refactor_after_stale_step;
-      d.q = in.q_save;
-      d.v = in.v_save;
-      d.v_dot = in.vd_save;
-      in.lambda_star = in.lambda_save;
+      copy_same_size(d.q, in.q_save);
+      copy_same_size(d.v, in.v_save);
+      copy_same_size(d.v_dot, in.vd_save);
+      copy_same_size(in.lambda_star, in.lambda_save);
       in.have_factorization = false;
       stale_step = false;
       restored = true;
@@ -349,10 +349,10 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     }
     stale_step = !fresh;
     if (stale_step) {
-      in.q_save = d.q;
-      in.v_save = d.v;
-      in.vd_save = d.v_dot;
-      in.lambda_save = in.lambda_star;
+      copy_same_size(in.q_save, d.q);
+      copy_same_size(in.v_save, d.v);
+      copy_same_size(in.vd_save, d.v_dot);
+      copy_same_size(in.lambda_save, in.lambda_star);
     }
     residual_prev = residual;
     scaled_residual_prev = scaled_residual;
@@ -484,7 +484,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
                           (Scalar(1) - s.multiplier_trend_memory) * in.lambda_increment;
   else
     in.lambda_increment = in.lambda_star - in.lambda_last;
-  in.lambda_last = in.lambda_star;
+  copy_same_size(in.lambda_last, in.lambda_star);
   // Under a Newton budget, a step whose constraints were met to first order only had too few
   // multiplier updates to show a trend: the next step starts from its multipliers without
   // extrapolating (as after a step kept at the budget; extrapolated, the crane under a budget
@@ -500,7 +500,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
         (d.v_dot - in.vd_n).cwiseProduct(in.correction_scale).cwiseAbs().maxCoeff();
     in.predict_linear = linear_miss <= constant_miss;
   }
-  in.vd_prev = in.vd_n;
+  copy_same_size(in.vd_prev, in.vd_n);
   in.has_previous = true;
   ++d.statistics.steps;
   // Drift: |B v + Phi_t| with B of the last iterate (velocity_drift_limit).

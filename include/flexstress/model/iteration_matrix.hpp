@@ -47,10 +47,9 @@ void record_rotations(const Model<Scalar>& model, Data<Scalar>& d) {
 template <class Scalar>
 void factorize_iteration(const Model<Scalar>& model, Data<Scalar>& d) {
   auto& in = d.integrator;
-  in.iteration.setZero();
-  set_mass_blocks(model, d, in.iteration);
+  start_iteration_matrix(model, d, in.iteration);
   const Scalar m_ref = max_abs(in.iteration.diagonal());
-  in.iteration *= in.beta_prime;
+  scale_body_blocks(model, in.iteration, in.beta_prime);
   add_modal_stiffness_damping(model, d, in.iteration, Scalar(1), in.gamma_prime);
   in.penalty = d.settings.penalty_factor * in.penalty_boost * in.beta_prime * m_ref;
   add_constraint_gram(model, d, in.penalty, in.iteration);
@@ -77,8 +76,7 @@ void factorize_projection(const Model<Scalar>& model, Data<Scalar>& d,
                           ProjectionMetric metric = ProjectionMetric::mass) {
   auto& in = d.integrator;
   evaluate(model, d);
-  in.iteration.setZero();
-  set_mass_blocks(model, d, in.iteration);
+  start_iteration_matrix(model, d, in.iteration);
   if (metric == ProjectionMetric::elastic) {
     const Scalar omega_0 = Scalar(2 * 3.14159265358979323846);
     add_modal_stiffness_damping(model, d, in.iteration, Scalar(1) / (omega_0 * omega_0), Scalar(0));
@@ -178,8 +176,7 @@ Scalar solve_accelerations(const Model<Scalar>& model, Data<Scalar>& d, Scalar p
     if (!d.joint_active[k])
       d.lambda.segment(model.joints()[k].row, model.joints()[k].equations).setZero();
   evaluate(model, d);
-  in.iteration.setZero();
-  set_mass_blocks(model, d, in.iteration);
+  start_iteration_matrix(model, d, in.iteration);
   in.penalty = penalty_factor * max_abs(in.iteration.diagonal());
   add_constraint_gram(model, d, in.penalty, in.iteration);
   in.cholesky.compute(in.iteration);

@@ -288,12 +288,28 @@ void add_mass_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& 
                           y.data() + b.v_offset);
 }
 
-/// Writes the mass blocks into s (nv x nv); other entries are left alone.
+/// Starts an iteration matrix s (nv x nv): the mass blocks on the diagonal, zeros on the blocks
+/// the joints couple. Entries outside the block pattern are zero since the Data was made and
+/// nothing writes them, so s is not cleared whole (for a chain of bodies the pattern is a small
+/// part of nv^2).
 template <class Scalar, class S>
-void set_mass_blocks(const Model<Scalar>& model, const Data<Scalar>& d, S& s) {
-  for (const auto& b : model.bodies())
+void start_iteration_matrix(const Model<Scalar>& model, const Data<Scalar>& d, S& s) {
+  const auto& bodies = model.bodies();
+  for (const auto& [i, j] : model.block_pattern().couplings) {
+    const auto& bi = bodies[static_cast<std::size_t>(i)];
+    const auto& bj = bodies[static_cast<std::size_t>(j)];
+    s.block(bi.v_offset, bj.v_offset, bi.nv, bj.nv).setZero();
+    s.block(bj.v_offset, bi.v_offset, bj.nv, bi.nv).setZero();
+  }
+  for (const auto& b : bodies)
     s.block(b.v_offset, b.v_offset, b.nv, b.nv) =
         detail::ConstColBlock<Scalar>(d.mass.data() + b.mass_offset, b.nv, b.nv);
+}
+
+/// s *= factor on the body blocks (the rest of a started iteration matrix is zero).
+template <class Scalar, class S>
+void scale_body_blocks(const Model<Scalar>& model, S& s, Scalar factor) {
+  for (const auto& b : model.bodies()) s.block(b.v_offset, b.v_offset, b.nv, b.nv) *= factor;
 }
 
 /// y += B^T x, joint by joint and body by body.
@@ -313,26 +329,38 @@ void jacobian_times(const Model<Scalar>& model, const Data<Scalar>& d, const X& 
     k.rows_times(k.nv, d.jacobian.data() + k.jac, k.rows, x.data() + k.v_offset, y.data() + k.row);
 }
 
-/// s += alpha B^T B, joint by joint: a joint's rows touch only its two bodies' columns.
+/// s += alpha B^T B, joint by joint: a joint's rows touch only its two bodies' columns. The
+/// blocks below the diagonal are summed and those above it copied from them (B^T B is
+/// symmetric), so the blocks the joints couple must hold nothing else on entry (as
+/// start_iteration_matrix leaves them).
 template <class Scalar, class S>
 void add_constraint_gram(const Model<Scalar>& model, const Data<Scalar>& d, Scalar alpha, S& s) {
   const auto& bodies = model.bodies();
+  const auto add = [&](const auto& j, int p, int q) {
+    const int body[2] = {j.body_i, j.body_j};
+    const int offset[2] = {j.jac_i, j.jac_j};
+    const auto& bp = bodies[static_cast<std::size_t>(body[p])];
+    const auto& bq = bodies[static_cast<std::size_t>(body[q])];
+    bp.kernels->add_gram(bp.nv, d.jacobian.data() + offset[p], j.equations,
+                         d.jacobian.data() + offset[q], bq.nv, alpha, &s(bp.v_offset, bq.v_offset),
+                         static_cast<int>(s.outerStride()));
+  };
   for (std::size_t k = 0; k < model.joints().size(); ++k) {
     if (!d.joint_active[k]) continue;
     const auto& j = model.joints()[k];
-    const int body[2] = {j.body_i, j.body_j};
-    const int offset[2] = {j.jac_i, j.jac_j};
-    for (int p = 0; p < 2; ++p) {
-      if (body[p] < 0) continue;
-      const auto& bp = bodies[static_cast<std::size_t>(body[p])];
-      for (int q = 0; q < 2; ++q) {
-        if (body[q] < 0) continue;
-        const auto& bq = bodies[static_cast<std::size_t>(body[q])];
-        bp.kernels->add_gram(bp.nv, d.jacobian.data() + offset[p], j.equations,
-                             d.jacobian.data() + offset[q], bq.nv, alpha,
-                             &s(bp.v_offset, bq.v_offset), static_cast<int>(s.outerStride()));
-      }
+    if (j.body_i >= 0) add(j, 0, 0);
+    if (j.body_j >= 0) add(j, 1, 1);
+    if (j.body_i >= 0 && j.body_j >= 0) {
+      const bool i_below = bodies[static_cast<std::size_t>(j.body_i)].v_offset >
+                           bodies[static_cast<std::size_t>(j.body_j)].v_offset;
+      add(j, i_below ? 0 : 1, i_below ? 1 : 0);
     }
+  }
+  for (const auto& [i, j] : model.block_pattern().couplings) {
+    const auto& low = bodies[static_cast<std::size_t>(std::max(i, j))];
+    const auto& high = bodies[static_cast<std::size_t>(std::min(i, j))];
+    s.block(high.v_offset, low.v_offset, high.nv, low.nv) =
+        s.block(low.v_offset, high.v_offset, low.nv, high.nv).transpose();
   }
 }
 

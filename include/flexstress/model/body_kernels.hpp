@@ -322,36 +322,22 @@ struct BodyKernelImpl {
     const Eigen::Map<const VecV> xb(x, nv);
     for (int r = 0; r < count; ++r) y[r] += Eigen::Map<const VecV>(rows + r * nv, nv).dot(xb);
   }
+  /// Column k of alpha B^T C is the sum over the rows r of (alpha b_r) c_rk: summed at the
+  /// body's fixed size and added to s once per column.
   static void add_gram(int nv, const Scalar* rows, int count, const Scalar* other, int nc,
                        Scalar alpha, Scalar* s, int ld) {
-    switch (count) {  // a joint has 1 to 6 equations: the row count at compile time too
-      case 1: return add_gram<1>(nv, rows, other, nc, alpha, s, ld);
-      case 2: return add_gram<2>(nv, rows, other, nc, alpha, s, ld);
-      case 3: return add_gram<3>(nv, rows, other, nc, alpha, s, ld);
-      case 4: return add_gram<4>(nv, rows, other, nc, alpha, s, ld);
-      case 5: return add_gram<5>(nv, rows, other, nc, alpha, s, ld);
-      case 6: return add_gram<6>(nv, rows, other, nc, alpha, s, ld);
-      default:
-        for (int r = 0; r < count; ++r) {
-          const Eigen::Map<const VecV> b(rows + r * nv, nv);
-          for (int k = 0; k < nc; ++k)
-            Eigen::Map<VecV>(s + k * ld, nv).noalias() += (alpha * other[r * nc + k]) * b;
-        }
-    }
-  }
-  /// Column k of alpha B^T C is (alpha B^T) times column k of C: one fixed-size product per
-  /// column, so each column of s is read and written once.
-  template <int Count>
-  static void add_gram(int nv, const Scalar* rows, const Scalar* other, int nc, Scalar alpha,
-                       Scalar* s, int ld) {
-    using Rows = BoundedMat<Scalar, Body::nv, Count, ModalSizes<Scalar, N>::nv_bound, Count>;
-    const Rows scaled = alpha * Eigen::Map<const Rows>(rows, nv, Count);  // B^T, column-major
+    eigen_assert(count <= max_gram_rows);
+    if (count <= 0) return;
+    using Rows = BoundedMat<Scalar, Body::nv, Eigen::Dynamic, ModalSizes<Scalar, N>::nv_bound,
+                            max_gram_rows>;
+    const Rows scaled = alpha * Eigen::Map<const Rows>(rows, nv, count);  // alpha B^T
     for (int k = 0; k < nc; ++k) {
-      Eigen::Matrix<Scalar, Count, 1> c;  // a local copy: s cannot alias it, so each
-      for (int r = 0; r < Count; ++r) c(r) = other[r * nc + k];  // entry is loaded once
-      Eigen::Map<VecV>(s + k * ld, nv).noalias() += scaled.lazyProduct(c);
+      VecV column = scaled.col(0) * other[k];
+      for (int r = 1; r < count; ++r) column.noalias() += scaled.col(r) * other[r * nc + k];
+      Eigen::Map<VecV>(s + k * ld, nv) += column;
     }
   }
+  static constexpr int max_gram_rows = 6;  // a joint's equations
 
   static void add_stiffness_damping(const void* h, Scalar k_factor, Scalar c_factor, bool damping,
                                     const Scalar* geometric, Scalar* block, int ld) {

@@ -14,8 +14,15 @@
 // radian, adds up over hundreds of periods. The tip's vibration then converges at second order
 // (an error of 84 %, 25 % and 6.4 % at h, h / 2 and h / 4 with three modes) but is not within
 // 1 % at 1 ms.
+//
+// FLEXSTRESS_STRESS_SUITE_REFERENCE=0 in the environment leaves out the converged runs, eight
+// times the steps of the default ones, and with them the 1 % comparison: the sanitizer build,
+// about ten times slower, sets it and checks that every case runs to its end on the defaults;
+// the Release build makes the comparison. Published references (the Test Set's, the 40-bar
+// chain's exact motion) are compared in both.
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <string>
 #include <vector>
@@ -85,6 +92,12 @@ Run run(const SuiteCase& c, const ImplicitSettings<double>& settings) {
   return r;
 }
 
+/// Whether the converged reference runs are made (see the top of this file).
+bool converged_runs() {
+  const char* s = std::getenv("FLEXSTRESS_STRESS_SUITE_REFERENCE");
+  return s == nullptr || std::string(s) != "0";
+}
+
 /// What check_case measured: the quantity at the end of each run.
 struct Outcome {
   double reference_end = 0, default_end = 0;
@@ -97,7 +110,10 @@ Outcome check_case(const SuiteCase& c) {
   const ImplicitSettings<double> defaults;
   ImplicitSettings<double> tight = defaults;
   Run ref;
-  if (c.reference.empty()) {
+  const bool compared = !c.reference.empty() || converged_runs();
+  if (!compared) {
+    MESSAGE(c.name << ": no converged run (FLEXSTRESS_STRESS_SUITE_REFERENCE=0)");
+  } else if (c.reference.empty()) {
     tight.step = defaults.step / 8;
     tight.acceleration_tolerance = tight.acceleration_tolerance / 100;
     tight.relative_acceleration_tolerance = tight.relative_acceleration_tolerance / 100;
@@ -113,7 +129,7 @@ Outcome check_case(const SuiteCase& c) {
   const double iterations = s.steps > 0 ? double(s.iterations) / double(s.steps) : 0.0;
   const double factorizations = s.steps > 0 ? double(s.factorizations) / double(s.steps) : 0.0;
   double scale = 0, error = 0;
-  for (std::size_t k = 0; k < def.y.size(); ++k) {
+  for (std::size_t k = 0; compared && k < def.y.size(); ++k) {
     const std::size_t ratio = static_cast<std::size_t>(std::lround(defaults.step / tight.step));
     const double y_ref = ref.y[ratio * (k + 1) - 1];  // the reference at the same time
     scale = std::max(scale, std::abs(y_ref));
@@ -128,9 +144,9 @@ Outcome check_case(const SuiteCase& c) {
                  << s.largest_error_estimate << " (" << s.above_error_tolerance
                  << " pieces kept above the tolerance)"
                  << ", largest difference to the reference " << error << " of " << scale << " ("
-                 << 100 * error / scale << " %), both runs " << seconds << " s");
+                 << (compared ? 100 * error / scale : 0.0) << " %), in " << seconds << " s");
   CHECK(def.finished);
-  CHECK(error <= 0.01 * scale);
+  if (compared) CHECK(error <= 0.01 * scale);
   CHECK(s.over_budget == s.stalled_steps);  // no other step kept unconverged
   // The statistics tell a step kept above the error tolerance: only the smallest pieces are.
   CHECK((s.above_error_tolerance > 0) ==

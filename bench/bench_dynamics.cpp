@@ -5,6 +5,8 @@
 //                            modes on a revolute joint, swinging under gravity from horizontal,
 //                            1e5 steps at h = 1 ms; counter fixed_kernel: 1 where N has
 //                            fixed-size body kernels (FLEXSTRESS_MODE_COUNTS), 0 bounded
+//   hinged_bounded/modes:N   the same on the bounded kernels (ModelBuilder::use_bounded_kernels)
+//                            where N has fixed-size ones: what the fixed sizes save
 //   hinged_effects/...       the same with N = 10 and only the effects switched on (spinning at
 //                            2 rad/s so every variant moves): the cost of each effect
 //   hinged_rk4/modes:N       explicit RK4 at its stable step (h w_max = 2), 1e5 steps
@@ -54,6 +56,7 @@ struct HingedBeam {
 
 struct HingedEffects {
   bool gravity = true, quadratic_velocity = true, damping = true;
+  bool bounded_kernels = false;
 };
 
 struct Hinged {
@@ -65,6 +68,7 @@ std::optional<Hinged> make_hinged(const HingedBeam& beam, int modes, HingedEffec
   if (!beam.ok) return std::nullopt;
   ModelBuilder<double> b;
   Hinged h;
+  if (e.bounded_kernels) b.use_bounded_kernels();
   h.beam = b.add_flexible_body("beam", beam.data, modes);
   if (!e.damping) b.set_damping_ratio(h.beam, 0.0);
   b.add_joint("hinge", JointKind::revolute, b.add_marker("pivot", b.ground(), -1),
@@ -82,10 +86,12 @@ void newton_counters(benchmark::State& bench, const Data<double>& d) {
       static_cast<double>(d.statistics.iterations) / static_cast<double>(d.statistics.steps);
 }
 
-void hinged_implicit(benchmark::State& bench) {
+void hinged_run(benchmark::State& bench, bool bounded_kernels) {
   const int modes = static_cast<int>(bench.range(0));
   const HingedBeam beam(modes);
-  auto h = make_hinged(beam, modes);
+  HingedEffects e;
+  e.bounded_kernels = bounded_kernels;
+  auto h = make_hinged(beam, modes, e);
   if (!h) return bench.SkipWithError("hinged beam setup failed");
   Data<double> d(h->model);
   if (!initialize(h->model, d)) return bench.SkipWithError("initialize failed");
@@ -94,6 +100,13 @@ void hinged_implicit(benchmark::State& bench) {
   newton_counters(bench, d);
   bench.counters["nv"] = h->model.num_velocities();
   bench.counters["fixed_kernel"] = h->model.body(h->beam).kernels->fixed_modes == modes ? 1 : 0;
+}
+
+void hinged_implicit(benchmark::State& bench) {
+  hinged_run(bench, false);
+}
+void hinged_bounded(benchmark::State& bench) {
+  hinged_run(bench, true);
 }
 
 void hinged_effects(benchmark::State& bench) {
@@ -137,6 +150,7 @@ FLEXSTRESS_ONCE(BENCHMARK(hinged_implicit)
                     ->Arg(16)
                     ->Arg(24)
                     ->Arg(40));
+FLEXSTRESS_ONCE(BENCHMARK(hinged_bounded)->ArgName("modes")->Arg(10)->Arg(16));
 // Effects switched on in turn: none, gravity, + quadratic velocity, + modal damping.
 FLEXSTRESS_ONCE(BENCHMARK(hinged_effects)
                     ->ArgNames({"gravity", "quadratic_velocity", "damping"})

@@ -73,6 +73,7 @@ struct Data {
   VectorX jacobian;   ///< per joint and body its rows x nv block, row-major (Joint::jac_i, jac_j)
   VectorX phi, phi_t, conv;
   VectorX row_scratch;           ///< one body's row (force elements)
+  VectorX row_scratch_j;         ///< the other body's row of a spring-damper (iteration matrix)
   JointRows<Scalar> joint_rows;  ///< one joint's rows (update_constraints; not zeroed per call)
 
   // ---- integrator -------------------------------------------------------------------------
@@ -177,6 +178,7 @@ struct Data {
     int widest = 6;
     for (const auto& b : model.bodies()) widest = std::max(widest, b.nv);
     row_scratch.setZero(widest);
+    row_scratch_j.setZero(widest);
     settings = model.settings();
     statistics = StepStatistics();
     Integrator& in = integrator;

@@ -1,8 +1,8 @@
 // The implicit step's building blocks over (model, data): its parameters, the iteration matrix
-// S = M b' + D g' + K + alpha B^T B (factorized in its envelope, reused and turned with the
-// bodies), the solves and projections on it, and the index-1 acceleration solve that consistent
-// initial conditions and the explicit integrator share. model/implicit_step.hpp explains the
-// method; these are its pieces.
+// S = M b' + D g' + K + alpha B^T B (D and K of the bodies and the spring-dampers; factorized
+// in its envelope, reused and turned with the bodies), the solves and projections on it, and
+// the index-1 acceleration solve that consistent initial conditions and the explicit
+// integrator share. model/implicit_step.hpp explains the method; these are its pieces.
 #pragma once
 
 #include <algorithm>
@@ -51,6 +51,7 @@ void factorize_iteration(const Model<Scalar>& model, Data<Scalar>& d) {
   const Scalar m_ref = max_abs(in.iteration.diagonal());
   scale_body_blocks(model, in.iteration, in.beta_prime);
   add_modal_stiffness_damping(model, d, in.iteration, Scalar(1), in.gamma_prime);
+  add_force_element_tangent(model, d, in.iteration, Scalar(1), in.gamma_prime);
   in.penalty = d.settings.penalty_factor * in.penalty_boost * in.beta_prime * m_ref;
   add_constraint_gram(model, d, in.penalty, in.iteration);
   in.cholesky.compute(in.iteration);

@@ -12,6 +12,7 @@
 // by finalize(), so building code reads straight through.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -462,6 +463,14 @@ class ModelBuilder {
       for (int mk : {f.marker_i, f.marker_j})
         m.slot_parts_[static_cast<std::size_t>(m.markers_[static_cast<std::size_t>(mk)].slot)] |=
             MarkerParts::origin | marker_needs_rates;
+      // A spring-damper's tangent couples its bodies in the iteration matrix.
+      auto& couplings = m.pattern_.couplings;
+      if (f.kind == ForceKind::spring_damper && f.body_i >= 0 && f.body_j >= 0 &&
+          std::find_if(couplings.begin(), couplings.end(), [&](const auto& c) {
+            return (c.first == f.body_i && c.second == f.body_j) ||
+                   (c.first == f.body_j && c.second == f.body_i);
+          }) == couplings.end())
+        couplings.emplace_back(f.body_i, f.body_j);
       m.forces_.push_back(std::move(f));
     }
     m.laws_ = laws_;

@@ -97,6 +97,33 @@ TEST_CASE("runtime model: a hinged flexible beam's frequencies equal the pinned-
   }
 }
 
+// A rigid pendulum on a spherical joint, 1 m from the pivot to its centre of mass, started
+// 0.2 rad off the vertical: its static equilibrium is straight under the pivot (statics: the
+// weight's moment about the pivot vanishes only there). The iteration diverged when it kept
+// its matrix while the pendulum turned (solve_static_equilibrium reported a NaN correction).
+TEST_CASE(
+    "runtime model: static equilibrium of a pendulum started off the vertical hangs under the "
+    "pivot") {
+  ModelBuilder<double> b;
+  const BodyId bob =
+      b.add_rigid_body("bob", 50.0, Vector3d::Zero(), Vector3d(0.2, 0.2, 0.2).asDiagonal());
+  const double a = 0.2;
+  b.set_initial_pose(bob, Vector3d(std::sin(a), 0, -std::cos(a)),
+                     EulerParameters<double>(std::cos(a / 2), 0, -std::sin(a / 2), 0));
+  b.add_joint("hook", JointKind::spherical, b.add_marker("pivot", b.ground(), -1),
+              b.add_marker("hook", bob, -1, Vector3d(0, 0, 1.0)));
+  b.set_gravity(Vector3d(0, 0, -9.81));
+  const auto m = b.finalize();
+  REQUIRE_MESSAGE(m.ok(), m.error().what());
+  Data<double> d(*m);
+  const Status st = solve_static_equilibrium(*m, d);
+  REQUIRE_MESSAGE(st.ok(), st.error().what());
+  const Vector3d p = body_position(*m, d, bob);
+  CHECK(std::abs(p.x()) < 1e-8);
+  CHECK(std::abs(p.y()) < 1e-8);
+  CHECK(p.z() == doctest::Approx(-1.0).epsilon(1e-9));
+}
+
 TEST_CASE("runtime model: static equilibrium of a clamped cantilever matches the FE solution") {
   auto beam = testing::make_beam_body(kLength, kSection, 24, {0.0}, 16);
   ModelBuilder<double> b;

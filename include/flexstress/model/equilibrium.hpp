@@ -94,11 +94,12 @@ namespace detail {
 /// The equilibrium iteration from d's state (solve_static_equilibrium). With `applied`, the
 /// matrix has the stiffness of every applied force (applied_stiffness, symmetrized; the modal
 /// stiffness alone where that is not positive definite with c M) and is factorized densely;
-/// without, the modal stiffness K, in the step's envelope factorization. Returns whether it
-/// converged; `last` is the last correction.
+/// without, the modal stiffness K, in the step's envelope factorization, refactorized every
+/// `refresh` iterations. Returns whether it converged; `last` is the last correction.
 template <class Scalar>
 bool equilibrium_iterations(const Model<Scalar>& model, Data<Scalar>& d,
-                            const StaticEquilibriumOptions& opt, bool applied, Scalar& last) {
+                            const StaticEquilibriumOptions& opt, bool applied, int refresh,
+                            Scalar& last) {
   auto& in = d.integrator;
   const int nv = model.num_velocities();
   const Scalar c =
@@ -137,7 +138,7 @@ bool equilibrium_iterations(const Model<Scalar>& model, Data<Scalar>& d,
       if (!factorized) return false;
     }
     evaluate(model, d);
-    if (!applied && (it == 0 || it % 10 == 0)) {
+    if (!applied && it % refresh == 0) {
       start_iteration_matrix(model, d, in.iteration);
       scale_body_blocks(model, in.iteration, c);
       add_modal_stiffness_damping(model, d, in.iteration, Scalar(1), Scalar(0));
@@ -179,7 +180,11 @@ bool equilibrium_iterations(const Model<Scalar>& model, Data<Scalar>& d,
 /// was. The iteration's matrix first has the modal stiffness alone, which is enough where
 /// joints and drivers hold the bodies; where that does not converge (a body that a spring
 /// holds: the spring's stiffness, missing from the matrix, overshoots by about k / (c m) per
-/// iteration), it starts again with the stiffness of every applied force.
+/// iteration), it starts again with a matrix refactorized at every iteration (a kept matrix
+/// holds the stiff alpha B^T B of the joint directions it was made at, and diverged on a
+/// pendulum on a spherical joint started 0.2 rad off the vertical, its corrections growing a
+/// thousandfold per iteration; with a fresh one each it converged in 72), then with the
+/// stiffness of every applied force.
 template <class Scalar>
 Status solve_static_equilibrium(const Model<Scalar>& model, Data<Scalar>& d,
                                 const StaticEquilibriumOptions& opt = {}) {
@@ -189,10 +194,11 @@ Status solve_static_equilibrium(const Model<Scalar>& model, Data<Scalar>& d,
   d.v_dot.setZero();
   d.a.setZero();
   Scalar last = Scalar(0);
-  for (const bool applied : {false, true}) {
+  for (const int pass : {0, 1, 2}) {
+    const bool applied = pass == 2;
     d.q = q_start;
     d.lambda = lambda_start;
-    if (detail::equilibrium_iterations(model, d, opt, applied, last)) {
+    if (detail::equilibrium_iterations(model, d, opt, applied, pass == 0 ? 10 : 1, last)) {
       d.integrator.initialized = false;  // the next step starts from here
       d.integrator.have_factorization = false;
       return Status::success();

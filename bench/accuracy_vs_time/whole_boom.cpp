@@ -36,7 +36,8 @@
 #include <flexstress/stress/section_force_modes.hpp>
 #include <flexstress/stress/sub_model_inertia.hpp>
 
-#include "../../examples/crane/crane_precompute.hpp"
+#include "../../examples/crane/crane_model.hpp"
+#include "../../examples/crane/detail_model.hpp"
 
 using namespace flexstress;
 

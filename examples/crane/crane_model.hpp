@@ -6,7 +6,8 @@
 //
 // This header holds the model's side only. What the crane precomputes (the boom's reduction, the
 // detail's sub-model) is made in crane_precompute.cpp, the one unit that parses the FE, reduction
-// and stress headers for it; the other units see its results as plain data.
+// and stress headers for it, and the only crane unit that does not parse the model's headers;
+// the other units see its results as plain data (crane_precompute.hpp).
 #pragma once
 
 #include <algorithm>
@@ -20,27 +21,12 @@
 #include <flexstress/fatigue/damage.hpp>
 #include <flexstress/fatigue/sn_curve.hpp>
 #include <flexstress/model/all.hpp>
-#include <flexstress/reduction/modal_geometric_stiffness_data.hpp>
 
-#include "boom_model.hpp"
+#include "crane_precompute.hpp"
 
 namespace crane {
 
 using namespace flexstress;
-
-/// How the crane is built besides its CraneSpec.
-struct CraneOptions {
-  int modes = 10;             ///< boom deformation modes (6 static + fixed-interface ones)
-  bool hydraulic = false;     ///< the valve-driven cylinder instead of the prescribed stroke
-  bool with_inertia = false;  ///< the detail's own weight and inertia in its stresses
-  // What the model evaluates (docs/model.md); the accuracy study and the benchmarks vary them.
-  bool gravity = true;
-  bool modal_damping = true;  ///< the boom's damping ratios from its reduction; off: none
-  /// Off: the quadratic velocity terms left out, as an approximation.
-  bool quadratic_velocity = true;
-  /// K_G of the boom under its inertial and gravity loads, A and B clamped for the load cases.
-  bool geometric_stiffening = false;
-};
 
 /// The damage meter of every crane run: IIW hot-spot FAT 100, slope 3 to the knee at 1e7 and
 /// Haibach (5) beyond, as IIW recommends for variable amplitude; streaming rainflow on 128
@@ -103,42 +89,6 @@ inline PartsLayout parts_layout(const CraneSpec& spec) {
   l.gravity = Vector3d(0, -9.81, 0);
   return l;
 }
-
-/// The detail's sub-model, its mesh and its stress outputs (crane_precompute.hpp).
-struct DetailModel;
-
-/// The welded detail D: its sub-model, the read-outs on it and their fused rows in the boom's
-/// modal coordinates.
-struct Detail {
-  /// The sub-model and what it is made of: immutable once made, so crane copies share it.
-  std::shared_ptr<const DetailModel> model;
-  MatrixXd boundary_modes;  ///< Phi_b of the two sub-model ends (12 x modes)
-  MatrixXd fused;           ///< outputs x modes
-  std::vector<std::string> names;
-  Index hot_spot = -1, paper_hot_spot = -1, gauge_04t = -1, gauge_10t = -1, nominal = -1;
-  Index toe_line_first = -1, toe_line_count = 0;
-  Index num_bricks = 0;  ///< of the sub-model's mesh
-};
-
-/// What the crane precomputes before its model is assembled: the reduced boom, the detail, and
-/// what the options ask for besides.
-struct Precomputed {
-  Boom boom;
-  Detail detail;
-  /// K_G of the boom under its inertial and gravity loads, A and B clamped for the load cases
-  /// (CraneOptions::geometric_stiffening).
-  std::optional<reduction::ModalGeometricStiffness> boom_stiffening;
-  /// The detail's own weight and inertia in its outputs, outputs x 12 (CraneOptions::with_inertia;
-  /// stress/sub_model_inertia.hpp).
-  MatrixXd detail_inertia;
-};
-
-/// Reduces the boom with `options.modes` modes and makes the detail on it (crane_precompute.cpp).
-Result<Precomputed> precompute_crane(const CraneSpec& spec, const CraneOptions& options);
-
-/// Writes the detail's sub-model, driven by the boom's modal coordinates p (its first p.size()
-/// modes), with its displacement and stress fields as a VTK file (crane_precompute.cpp).
-Status write_detail_vtu(const Detail& detail, const VectorXd& p, const std::string& path);
 
 /// The crane: its model, the state it starts from (static equilibrium at the cycle's start) and
 /// the handles a run reads. Scalar: the model's (float for the accuracy study's float runs).

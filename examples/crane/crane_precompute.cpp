@@ -1,7 +1,7 @@
-// What the crane precomputes (crane_model.hpp, precompute_crane): the boom's reduction, the
+// What the crane precomputes (crane_precompute.hpp, precompute_crane): the boom's reduction, the
 // welded detail D's sub-model and its outputs, and what the options ask for besides. The one
 // crane unit that parses the FE, reduction and stress headers.
-#include "crane_precompute.hpp"
+#include "detail_model.hpp"
 
 #include <memory>
 #include <string>

@@ -6,8 +6,8 @@
 // seconds of compile time and gigabytes of compiler memory each. flexstress::compiled holds
 // their instantiations (src/compiled/precompute*.cpp include this header): linking it defines
 // FLEXSTRESS_COMPILED, and every unit that includes the headers then declares them extern
-// (core/precompute.hpp) and only parses them. Without the compiled library a project can do
-// the same itself:
+// (core/precompute.hpp) and sees only their declarations. Without the compiled library a project
+// can do the same itself:
 //   - in exactly one .cpp file:   #define FLEXSTRESS_INSTANTIATE_PRECOMPUTE
 //                                 #include <flexstress/precompute_instances.hpp>
 //     (or in FLEXSTRESS_PRECOMPUTE_PARTS files, compiled in parallel and in less memory each:

@@ -17,12 +17,23 @@
 // parameters) (FLEXSTRESS_PRECOMPUTE_FE_ASSEMBLY, ...; precompute_instances.hpp instantiates
 // them, in parts of a few groups each) and declares them extern where their instantiations are
 // compiled elsewhere: in flexstress::compiled (FLEXSTRESS_COMPILED, which linking it defines) or in
-// a project's own unit (FLEXSTRESS_EXTERN_PRECOMPUTE). A unit that declares them extern only parses
-// them. The unit that compiles them defines FLEXSTRESS_INSTANTIATE_PRECOMPUTE.
+// a project's own unit (FLEXSTRESS_EXTERN_PRECOMPUTE). The unit that compiles them defines
+// FLEXSTRESS_INSTANTIATE_PRECOMPUTE.
+//
+// A unit that declares them extern also skips their bodies (FLEXSTRESS_PRECOMPUTE_BODIES is 0;
+// each listed entry point's body sits in `#if FLEXSTRESS_PRECOMPUTE_BODIES`): although such a
+// body is a template that is never instantiated there, the compiler still checks the code in it
+// that does not depend on the template parameter, all of it here, and instantiates every Eigen
+// expression and solver class it names. A unit that meshes or reduces a body compiles in about
+// two thirds of the time without them (docs/performance.md, compile time). Entry points of class
+// templates (SubModelInertia<Scalar>) keep their bodies: only their double instances are
+// compiled in the library.
 #if (defined(FLEXSTRESS_COMPILED) || defined(FLEXSTRESS_EXTERN_PRECOMPUTE)) && \
     !defined(FLEXSTRESS_INSTANTIATE_PRECOMPUTE)
 #define FLEXSTRESS_PRECOMPUTE_EXTERN_ENTRY(P, R, F, A) extern template R F<void> A;
+#define FLEXSTRESS_PRECOMPUTE_BODIES 0
 #else
 #define FLEXSTRESS_PRECOMPUTE_EXTERN_ENTRY(P, R, F, A)
+#define FLEXSTRESS_PRECOMPUTE_BODIES 1
 #endif
 #define FLEXSTRESS_PRECOMPUTE_EXTERN(LIST) LIST(FLEXSTRESS_PRECOMPUTE_EXTERN_ENTRY)

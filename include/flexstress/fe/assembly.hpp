@@ -61,7 +61,9 @@ inline void scatter_matrix_element(std::vector<Eigen::Triplet<double>>& trip, co
 
 /// Global stiffness over all nodal DOFs. Fails on degenerate bricks (naming the element).
 FLEXSTRESS_PRECOMPUTE
-Result<SparseMatrixd> assemble_stiffness(const Mesh& mesh, const DofMap& dofs) {
+Result<SparseMatrixd> assemble_stiffness(const Mesh& mesh, const DofMap& dofs)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(mesh.beams().size() * 144 + mesh.hexes().size() * 576);
   for (const auto& b : mesh.beams()) {
@@ -82,11 +84,16 @@ Result<SparseMatrixd> assemble_stiffness(const Mesh& mesh, const DofMap& dofs) {
   k.setFromTriplets(trip.begin(), trip.end());
   return k;
 }
+#else
+    ;
+#endif
 
 /// Global mass over all nodal DOFs (beams, bricks, point masses, matrix elements).
 FLEXSTRESS_PRECOMPUTE
 Result<SparseMatrixd> assemble_mass(const Mesh& mesh, const DofMap& dofs,
-                                    const MassOptions& options = {}) {
+                                    const MassOptions& options = {})
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(mesh.beams().size() * 144 + mesh.hexes().size() * 192);
   for (const auto& b : mesh.beams()) {
@@ -115,6 +122,9 @@ Result<SparseMatrixd> assemble_mass(const Mesh& mesh, const DofMap& dofs,
   m.setFromTriplets(trip.begin(), trip.end());
   return m;
 }
+#else
+    ;
+#endif
 
 /// A mesh with its DOF numbering, constraints and assembled matrices: the input of the static
 /// and eigen solvers, the reductions and the sub-model influence matrices.
@@ -133,7 +143,9 @@ struct AssembledModel {
 /// Numbers the DOFs, builds the constraint transformation and assembles K and M.
 FLEXSTRESS_PRECOMPUTE
 Result<AssembledModel> assemble(const Mesh& mesh, const BoundaryConditions& bc = {},
-                                const MassOptions& mass_options = {}) {
+                                const MassOptions& mass_options = {})
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   auto dofs = DofMap::build(mesh);
   if (!dofs) return dofs.error();
   auto ct = ConstraintTransform::build(mesh, *dofs, bc);
@@ -151,6 +163,9 @@ Result<AssembledModel> assemble(const Mesh& mesh, const BoundaryConditions& bc =
       SparseMatrixd(t.transpose() * (a.stiffness_all * a.constraints.prescribed_to_all()));
   return a;
 }
+#else
+    ;
+#endif
 
 /// Load vector over all DOFs from nodal forces/moments: (node, component, value) triples.
 struct NodalLoad {
@@ -160,7 +175,9 @@ struct NodalLoad {
 };
 
 FLEXSTRESS_PRECOMPUTE
-Result<VectorXd> load_vector(const DofMap& dofs, const std::vector<NodalLoad>& loads) {
+Result<VectorXd> load_vector(const DofMap& dofs, const std::vector<NodalLoad>& loads)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   VectorXd f = VectorXd::Zero(dofs.size());
   for (std::size_t i = 0; i < loads.size(); ++i) {
     const auto& l = loads[i];
@@ -176,6 +193,9 @@ Result<VectorXd> load_vector(const DofMap& dofs, const std::vector<NodalLoad>& l
   }
   return f;
 }
+#else
+    ;
+#endif
 
 }  // namespace flexstress::fe
 

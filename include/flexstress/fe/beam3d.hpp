@@ -164,6 +164,7 @@ struct BeamGeometry {
   }
 };
 
+#if FLEXSTRESS_PRECOMPUTE_BODIES
 template <class>
 void BeamGeometry::interpolation(double xi, Matrix3x12d& n_u, Matrix3x12d& n_r) const {
   Matrix3x12d lu, lr;
@@ -172,10 +173,13 @@ void BeamGeometry::interpolation(double xi, Matrix3x12d& n_u, Matrix3x12d& n_r) 
   n_u = axes.transpose() * lu * t;
   n_r = axes.transpose() * lr * t;
 }
+#endif
 
 /// Global-axes stiffness matrix of a beam element.
 FLEXSTRESS_PRECOMPUTE
-Matrix12d beam_stiffness(const Mesh& mesh, const BeamElement& b) {
+Matrix12d beam_stiffness(const Mesh& mesh, const BeamElement& b)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   const BeamGeometry geo(mesh, b);
   const Material& mat = mesh.material(b.material);
   const BeamSection& s = mesh.section(b.section);
@@ -188,12 +192,17 @@ Matrix12d beam_stiffness(const Mesh& mesh, const BeamElement& b) {
   const Matrix12d t = beam_dof_rotation(geo.axes);
   return t.transpose() * beam_local_stiffness(mat, s, geo.length, phi_y, phi_z) * t;
 }
+#else
+    ;
+#endif
 
 /// Global-axes mass matrix of a beam element, integrated from the interpolation: kinetic energy
 /// 1/2 integral rho (A |u_dot|^2 + theta_dot^T J_s theta_dot) dx, J_s the polar tensor of the
 /// section (tr(I_s) 1 - I_s). Without rotary inertia J_s keeps only torsion about the axis.
 FLEXSTRESS_PRECOMPUTE
-Matrix12d beam_mass(const Mesh& mesh, const BeamElement& b, const MassOptions& opt) {
+Matrix12d beam_mass(const Mesh& mesh, const BeamElement& b, const MassOptions& opt)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   const BeamGeometry geo(mesh, b);
   const double rho = mesh.material(b.material).density;
   const BeamSection& s = mesh.section(b.section);
@@ -228,6 +237,9 @@ Matrix12d beam_mass(const Mesh& mesh, const BeamElement& b, const MassOptions& o
   }
   return m;
 }
+#else
+    ;
+#endif
 
 /// Section forces in local axes at xi, from the element's own displacement field (curvature of
 /// the cubic Hermite field): normal force N = E A u', torque T = G J rx', bending moments

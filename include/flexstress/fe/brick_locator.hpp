@@ -81,6 +81,7 @@ class BrickLocator {
   std::vector<Index> cell_items_;
 };
 
+#if FLEXSTRESS_PRECOMPUTE_BODIES
 template <class>
 Result<BrickLocator> BrickLocator::build(const Mesh& mesh, double tolerance) {
   if (Status s = mesh.validate(); !s) return s.error();
@@ -175,6 +176,7 @@ Result<BrickPoint> BrickLocator::locate(const Vector3d& p) const {
                     "element by centroid is ",
                     nearest, " at distance ", nearest_d, ")");
 }
+#endif
 
 }  // namespace flexstress::fe
 

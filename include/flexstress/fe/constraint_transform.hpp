@@ -82,6 +82,7 @@ class ConstraintTransform {
   Index num_free_ = 0;
 };
 
+#if FLEXSTRESS_PRECOMPUTE_BODIES
 template <class>
 Result<ConstraintTransform> ConstraintTransform::build(const Mesh& mesh, const DofMap& dofs,
                                                        const BoundaryConditions& bc) {
@@ -281,6 +282,7 @@ Result<ConstraintTransform> ConstraintTransform::build(const Mesh& mesh, const D
   ct.g_.setFromTriplets(g_trip.begin(), g_trip.end());
   return ct;
 }
+#endif
 
 }  // namespace flexstress::fe
 

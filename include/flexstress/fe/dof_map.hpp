@@ -51,6 +51,7 @@ class DofMap {
   Index size_ = 0;
 };
 
+#if FLEXSTRESS_PRECOMPUTE_BODIES
 template <class>
 Result<DofMap> DofMap::build(const Mesh& mesh) {
   if (Status s = mesh.validate(); !s) return s.error();
@@ -92,6 +93,7 @@ Result<DofMap> DofMap::build(const Mesh& mesh) {
   map.size_ = next;
   return map;
 }
+#endif
 
 }  // namespace flexstress::fe
 

@@ -130,7 +130,9 @@ struct Hex8Kinematics {
 /// Jacobian checks and Gauss-point kinematics. Fails for inverted or degenerate bricks
 /// (non-positive Jacobian determinant at a Gauss point or the centre), naming the element.
 FLEXSTRESS_PRECOMPUTE
-Result<Hex8Kinematics> hex8_kinematics(const Hex8Coordinates& x, Index element_id) {
+Result<Hex8Kinematics> hex8_kinematics(const Hex8Coordinates& x, Index element_id)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   Hex8Kinematics k;
   const double size = (x.rowwise().maxCoeff() - x.rowwise().minCoeff()).norm();
   const double tiny = 1e-12 * size * size * size;
@@ -158,6 +160,9 @@ Result<Hex8Kinematics> hex8_kinematics(const Hex8Coordinates& x, Index element_i
   }
   return k;
 }
+#else
+    ;
+#endif
 
 /// Condensation data of the incompatible modes: alpha = -K_aa^-1 K_au u_e.
 struct Hex8Condensation {
@@ -188,7 +193,9 @@ void hex8_incompatible_blocks(const Hex8Kinematics& k, const Matrix6d& d, Matrix
 /// Element stiffness (24 x 24) in global axes.
 FLEXSTRESS_PRECOMPUTE
 Result<Matrix24d> hex8_stiffness(const Hex8Coordinates& x, const Material& mat,
-                                 Hex8Formulation formulation, Index element_id) {
+                                 Hex8Formulation formulation, Index element_id)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   auto kin = hex8_kinematics(x, element_id);
   if (!kin) return kin.error();
   const Matrix6d d = elasticity_matrix(mat);
@@ -205,12 +212,17 @@ Result<Matrix24d> hex8_stiffness(const Hex8Coordinates& x, const Material& mat,
   const Eigen::Matrix<double, 9, 24> kaa_inv_kau = kaa.ldlt().solve(kua.transpose());
   return Matrix24d(kuu - kua * kaa_inv_kau);
 }
+#else
+    ;
+#endif
 
 /// Consistent mass rho integral N^T N dV (2x2x2 Gauss, exact for the trilinear field on a
 /// parallelepiped), or its row-sum lumped diagonal.
 FLEXSTRESS_PRECOMPUTE
 Result<Matrix24d> hex8_mass(const Hex8Coordinates& x, double density, MassLumping lumping,
-                            Index element_id) {
+                            Index element_id)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   auto kin = hex8_kinematics(x, element_id);
   if (!kin) return kin.error();
   Eigen::Matrix<double, 8, 8> m = Eigen::Matrix<double, 8, 8>::Zero();
@@ -229,6 +241,9 @@ Result<Matrix24d> hex8_mass(const Hex8Coordinates& x, double density, MassLumpin
       for (int c = 0; c < 3; ++c) out(3 * a + c, 3 * b + c) = m(a, b);
   return out;
 }
+#else
+    ;
+#endif
 
 /// Scalar (per-direction) consistent mass matrix rho integral N_a N_b dV (8 x 8): the full mass
 /// is this matrix times the 3x3 identity. Used for inertia integrals (nodal-based FFRF).
@@ -249,7 +264,9 @@ Result<Eigen::Matrix<double, 8, 8>> hex8_scalar_mass(const Hex8Coordinates& x, d
 FLEXSTRESS_PRECOMPUTE
 Result<Hex8StressOperator> hex8_stress_operator(const Hex8Coordinates& x, const Material& mat,
                                                 Hex8Formulation formulation, const Vector3d& xi,
-                                                Index element_id) {
+                                                Index element_id)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   auto kin = hex8_kinematics(x, element_id);
   if (!kin) return kin.error();
   const Matrix6d d = elasticity_matrix(mat);
@@ -270,6 +287,9 @@ Result<Hex8StressOperator> hex8_stress_operator(const Hex8Coordinates& x, const 
       hex8::incompatible_strain_matrix(xi, kin->j0_inv_t, kin->det_j0 / det);
   return Hex8StressOperator(d * (b + ba * alpha));
 }
+#else
+    ;
+#endif
 
 /// Natural coordinates of a physical point (inverse isoparametric map, Newton's method).
 /// Returns the natural coordinates whether or not the point lies inside; check

@@ -17,7 +17,9 @@ namespace flexstress::fe {
 
 /// n_all x 6 matrix: columns translation x, y, z, rotation about x, y, z (about `center`).
 FLEXSTRESS_PRECOMPUTE
-MatrixXd rigid_body_modes(const Mesh& mesh, const DofMap& dofs, const Vector3d& center) {
+MatrixXd rigid_body_modes(const Mesh& mesh, const DofMap& dofs, const Vector3d& center)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   MatrixXd r = MatrixXd::Zero(dofs.size(), 6);
   for (Index n = 0; n < mesh.num_nodes(); ++n) {
     const int nd = dofs.num_node_dofs(n);
@@ -32,6 +34,9 @@ MatrixXd rigid_body_modes(const Mesh& mesh, const DofMap& dofs, const Vector3d& 
   }
   return r;
 }
+#else
+    ;
+#endif
 
 /// Centroid of the nodes that carry DOFs.
 FLEXSTRESS_PRECOMPUTE

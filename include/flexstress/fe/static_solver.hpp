@@ -99,6 +99,7 @@ class StaticSolver {
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrixd>> ldlt_;  // Eigen solvers do not move
 };
 
+#if FLEXSTRESS_PRECOMPUTE_BODIES
 template <class>
 Result<StaticSolver> StaticSolver::factorize(const Mesh& mesh, const AssembledModel& model) {
   StaticSolver s;
@@ -144,6 +145,7 @@ template <class>
 VectorXd StaticSolver::solve(const VectorXd& f_all) const {
   return solve(f_all, model_->constraints.prescribed_values());
 }
+#endif
 
 }  // namespace flexstress::fe
 

@@ -158,7 +158,9 @@ Vector24d hex8_element_displacements(const DofMap& dofs, const Hex8Element& h, c
 /// displacements u. Fails on size mismatches and degenerate bricks (naming the element).
 FLEXSTRESS_PRECOMPUTE
 Result<std::vector<Hex8GaussStresses>> gauss_point_stresses(const Mesh& mesh, const DofMap& dofs,
-                                                            const VectorXd& u) {
+                                                            const VectorXd& u)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   if (Status s = detail::check_recovery_input(mesh, dofs, u.size(), "gauss_point_stresses"); !s)
     return s.error();
   std::vector<Hex8GaussStresses> out(mesh.hexes().size());
@@ -172,6 +174,9 @@ Result<std::vector<Hex8GaussStresses>> gauss_point_stresses(const Mesh& mesh, co
   }
   return out;
 }
+#else
+    ;
+#endif
 
 /// Nodal stresses, extrapolated from the Gauss points and averaged over the bricks sharing
 /// each node. Nodes that belong to no brick (beam nodes, link masters) have count 0 and zero
@@ -186,7 +191,9 @@ struct NodalStresses {
 
 /// Averaged nodal stresses of all nodes for the all-DOF displacements u.
 FLEXSTRESS_PRECOMPUTE
-Result<NodalStresses> nodal_stresses(const Mesh& mesh, const DofMap& dofs, const VectorXd& u) {
+Result<NodalStresses> nodal_stresses(const Mesh& mesh, const DofMap& dofs, const VectorXd& u)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   if (Status s = detail::check_recovery_input(mesh, dofs, u.size(), "nodal_stresses"); !s)
     return s.error();
   NodalStresses out;
@@ -207,6 +214,9 @@ Result<NodalStresses> nodal_stresses(const Mesh& mesh, const DofMap& dofs, const
     if (out.defined(n)) out.stress.col(n) /= out.element_count[static_cast<std::size_t>(n)];
   return out;
 }
+#else
+    ;
+#endif
 
 /// Linear operator of the averaged nodal stresses at `nodes`: a sparse
 /// (6 * nodes.size()) x dofs.size() matrix S, rows 6 i .. 6 i + 5 for nodes[i], with
@@ -214,7 +224,9 @@ Result<NodalStresses> nodal_stresses(const Mesh& mesh, const DofMap& dofs, const
 /// Fails, naming the node, for a node that does not exist or belongs to no brick.
 FLEXSTRESS_PRECOMPUTE
 Result<SparseMatrixd> nodal_stress_operator(const Mesh& mesh, const DofMap& dofs,
-                                            const std::vector<Index>& nodes) {
+                                            const std::vector<Index>& nodes)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   if (Status s = detail::check_recovery_input(mesh, dofs, -1, "nodal_stress_operator"); !s)
     return s.error();
   const auto nn = static_cast<std::size_t>(mesh.num_nodes());
@@ -253,13 +265,18 @@ Result<SparseMatrixd> nodal_stress_operator(const Mesh& mesh, const DofMap& dofs
   s.setFromTriplets(trip.begin(), trip.end());
   return s;
 }
+#else
+    ;
+#endif
 
 /// Linear operator of the stresses at located brick points (not averaged: the stress of the
 /// element that contains each point): (6 * points.size()) x dofs.size(), rows 6 i .. 6 i + 5
 /// for points[i]. Fails for an element id that does not exist or a degenerate brick.
 FLEXSTRESS_PRECOMPUTE
 Result<SparseMatrixd> point_stress_operator(const Mesh& mesh, const DofMap& dofs,
-                                            const std::vector<BrickPoint>& points) {
+                                            const std::vector<BrickPoint>& points)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   if (Status s = detail::check_recovery_input(mesh, dofs, -1, "point_stress_operator"); !s)
     return s.error();
   std::vector<Eigen::Triplet<double>> trip;
@@ -279,13 +296,18 @@ Result<SparseMatrixd> point_stress_operator(const Mesh& mesh, const DofMap& dofs
   s.setFromTriplets(trip.begin(), trip.end());
   return s;
 }
+#else
+    ;
+#endif
 
 /// As above for physical points, located with `locator` (built from the same mesh). Fails,
 /// naming the point, for a point outside the brick mesh.
 FLEXSTRESS_PRECOMPUTE
 Result<SparseMatrixd> point_stress_operator(const Mesh& mesh, const DofMap& dofs,
                                             const BrickLocator& locator,
-                                            const std::vector<Vector3d>& points) {
+                                            const std::vector<Vector3d>& points)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   std::vector<BrickPoint> located;
   located.reserve(points.size());
   for (const Vector3d& p : points) {
@@ -295,12 +317,17 @@ Result<SparseMatrixd> point_stress_operator(const Mesh& mesh, const DofMap& dofs
   }
   return point_stress_operator(mesh, dofs, located);
 }
+#else
+    ;
+#endif
 
 /// Stress at a physical point for the all-DOF displacements u (the stress of the brick that
 /// contains the point; see BrickLocator::locate for points on shared faces).
 FLEXSTRESS_PRECOMPUTE
 Result<Vector6d> stress_at_point(const Mesh& mesh, const DofMap& dofs, const BrickLocator& locator,
-                                 const VectorXd& u, const Vector3d& p) {
+                                 const VectorXd& u, const Vector3d& p)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   if (Status s = detail::check_recovery_input(mesh, dofs, u.size(), "stress_at_point"); !s)
     return s.error();
   auto bp = locator.locate(p);
@@ -311,6 +338,9 @@ Result<Vector6d> stress_at_point(const Mesh& mesh, const DofMap& dofs, const Bri
   if (!op) return op.error();
   return Vector6d(*op * hex8_element_displacements(dofs, h, u));
 }
+#else
+    ;
+#endif
 
 }  // namespace flexstress::fe
 

@@ -41,7 +41,9 @@ struct BodyStressModes {
 /// another set of rotational nodes.
 FLEXSTRESS_PRECOMPUTE
 Result<MatrixXd> all_dof_mode_shapes(const fe::Mesh& mesh, const fe::DofMap& dofs,
-                                     const ModalBodyData& body) {
+                                     const ModalBodyData& body)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   if (body.num_nodes() != mesh.num_nodes() || dofs.num_nodes() != mesh.num_nodes())
     return make_error(ErrorCode::size_mismatch, "mode shapes: the modal body data has ",
                       body.num_nodes(), " nodes, the mesh ", mesh.num_nodes(),
@@ -57,13 +59,18 @@ Result<MatrixXd> all_dof_mode_shapes(const fe::Mesh& mesh, const fe::DofMap& dof
   }
   return u;
 }
+#else
+    ;
+#endif
 
 /// Stress modes at physical points (body frame) of the brick part of `mesh`, the mesh `body` was
 /// reduced from. Fails, naming the point, for a point outside the bricks, and for data that
 /// does not belong to the mesh.
 FLEXSTRESS_PRECOMPUTE
 Result<BodyStressModes> body_stress_modes(const fe::Mesh& mesh, const ModalBodyData& body,
-                                          const std::vector<Vector3d>& points) {
+                                          const std::vector<Vector3d>& points)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   auto dofs = fe::DofMap::build(mesh);
   if (!dofs) return dofs.error();
   auto shapes = all_dof_mode_shapes(mesh, *dofs, body);
@@ -77,6 +84,9 @@ Result<BodyStressModes> body_stress_modes(const fe::Mesh& mesh, const ModalBodyD
   s.modes = *op * *shapes;
   return s;
 }
+#else
+    ;
+#endif
 
 }  // namespace flexstress::reduction
 

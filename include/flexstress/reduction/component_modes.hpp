@@ -148,7 +148,9 @@ FLEXSTRESS_PRECOMPUTE
 Result<ComponentModes> craig_bampton(const fe::Mesh& mesh,
                                      const std::vector<InterfaceNode>& interface,
                                      const ModeSelection& modes, const fe::MassOptions& mass = {},
-                                     const fe::EigenOptions& eigen = {}) {
+                                     const fe::EigenOptions& eigen = {})
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   auto dofs = fe::DofMap::build(mesh);
   if (!dofs) return dofs.error();
   auto list = detail::interface_dof_list(mesh, *dofs, interface);
@@ -207,6 +209,9 @@ Result<ComponentModes> craig_bampton(const fe::Mesh& mesh,
   cm.method = ReductionMethod::craig_bampton;
   return cm;
 }
+#else
+    ;
+#endif
 
 /// Six DOFs (free, not rigid-link slaves) that support the body statically determinately:
 /// chosen by column-pivoted QR of the rigid modes restricted to the free DOFs.
@@ -235,7 +240,9 @@ FLEXSTRESS_PRECOMPUTE
 Result<ComponentModes> craig_chang(const fe::Mesh& mesh,
                                    const std::vector<InterfaceNode>& interface,
                                    const ModeSelection& modes, const fe::MassOptions& mass = {},
-                                   const fe::EigenOptions& eigen = {}) {
+                                   const fe::EigenOptions& eigen = {})
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   auto assembled = fe::assemble(mesh, {}, mass);
   if (!assembled) return assembled.error();
   ComponentModes cm;
@@ -321,6 +328,9 @@ Result<ComponentModes> craig_chang(const fe::Mesh& mesh,
   cm.method = ReductionMethod::craig_chang;
   return cm;
 }
+#else
+    ;
+#endif
 
 }  // namespace flexstress::reduction
 

@@ -65,7 +65,9 @@ Result<DeformationModes> attached_frame_modes(const ComponentModes& cm, const Re
 /// From a component-mode basis to modal body data.
 FLEXSTRESS_PRECOMPUTE
 Result<ModalBodyData> make_modal_body(const fe::Mesh& mesh, const ComponentModes& cm,
-                                      const ReductionSpec& spec) {
+                                      const ReductionSpec& spec)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   auto deformation =
       spec.interface_attached_frame ? attached_frame_modes(cm, spec) : orthonormalize(mesh, cm);
   if (!deformation) return deformation.error();
@@ -104,11 +106,16 @@ Result<ModalBodyData> make_modal_body(const fe::Mesh& mesh, const ComponentModes
   for (const auto& in : spec.interface) d.interface_nodes.push_back(in.node);
   return d;
 }
+#else
+    ;
+#endif
 
 /// The whole precompute: component modes (Craig-Bampton or Craig-Chang), orthonormalization,
 /// inertia integrals, mode shapes at every node.
 FLEXSTRESS_PRECOMPUTE
-Result<ModalBodyData> reduce(const fe::Mesh& mesh, const ReductionSpec& spec) {
+Result<ModalBodyData> reduce(const fe::Mesh& mesh, const ReductionSpec& spec)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   if (!(spec.damping_ratio >= 0.0) || !(spec.damping_ratio < 1.0))
     return make_error(ErrorCode::invalid_argument, "modal damping ratio must lie in [0, 1), got ",
                       spec.damping_ratio);
@@ -118,6 +125,9 @@ Result<ModalBodyData> reduce(const fe::Mesh& mesh, const ReductionSpec& spec) {
   if (!cm) return cm.error();
   return make_modal_body(mesh, *cm, spec);
 }
+#else
+    ;
+#endif
 
 }  // namespace flexstress::reduction
 

@@ -35,7 +35,9 @@ struct DeformationModes {
 /// all six rigid motions (an interface that cannot carry them), or if it contains a mechanism
 /// (a deformation mode with zero frequency).
 FLEXSTRESS_PRECOMPUTE
-Result<DeformationModes> orthonormalize(const fe::Mesh& mesh, const ComponentModes& cm) {
+Result<DeformationModes> orthonormalize(const fe::Mesh& mesh, const ComponentModes& cm)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   const MatrixXd& s = cm.basis;
   const Index r = s.cols();
   if (r <= 6)
@@ -90,6 +92,9 @@ Result<DeformationModes> orthonormalize(const fe::Mesh& mesh, const ComponentMod
       (kk - MatrixXd(out.eigenvalues.asDiagonal())).cwiseAbs().maxCoeff() / lmax;
   return out;
 }
+#else
+    ;
+#endif
 
 }  // namespace flexstress::reduction
 

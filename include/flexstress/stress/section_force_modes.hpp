@@ -33,7 +33,9 @@ namespace flexstress::stress {
 FLEXSTRESS_PRECOMPUTE
 Result<MatrixXd> section_force_modes(const fe::Mesh& host_mesh,
                                      const reduction::ModalBodyData& host, Index element,
-                                     Index node) {
+                                     Index node)
+#if FLEXSTRESS_PRECOMPUTE_BODIES
+{
   const auto& beams = host_mesh.beams();
   if (element < 0 || element >= static_cast<Index>(beams.size()))
     return make_error(ErrorCode::invalid_argument, "section forces: beam element ", element,
@@ -49,6 +51,9 @@ Result<MatrixXd> section_force_modes(const fe::Mesh& host_mesh,
   const fe::Matrix12d k = fe::beam_stiffness(host_mesh, b);
   return MatrixXd(k.middleRows<6>(6 * slot) * *phi);
 }
+#else
+    ;
+#endif
 
 }  // namespace flexstress::stress
 

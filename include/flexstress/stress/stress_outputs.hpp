@@ -123,6 +123,7 @@ class StressOutputs {
   std::vector<std::string> labels_;
 };
 
+#if FLEXSTRESS_PRECOMPUTE_BODIES
 template <class>
 Result<MatrixXd> StressOutputs::rows(const SubModel& sub) const {
   return rows(sub, sub.unit_displacements());
@@ -144,6 +145,7 @@ Result<MatrixXd> StressOutputs::rows(const SubModel& sub, const MatrixXd& fields
     }
   return r;
 }
+#endif
 
 }  // namespace flexstress::stress
 

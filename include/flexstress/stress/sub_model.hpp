@@ -162,6 +162,7 @@ class SubModel {
   MatrixXd unit_;
 };
 
+#if FLEXSTRESS_PRECOMPUTE_BODIES
 template <class>
 Result<SubModel> SubModel::build(fe::Mesh mesh,
                                  const std::vector<SubModelAttachment>& attachments) {
@@ -308,6 +309,7 @@ Result<VectorXd> SubModel::stresses_by_resolve(const std::vector<Vector3d>& poin
   }
   return out;
 }
+#endif
 
 }  // namespace flexstress::stress
 

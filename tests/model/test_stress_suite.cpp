@@ -363,6 +363,35 @@ TEST_CASE("stress suite: Andrews' squeezing mechanism, three loops and a stiff s
   CHECK(std::abs(out.default_end / andrews::beta_end - 1) < 1e-3);
 }
 
+// The option piece_newton_tolerance_fraction (off by default): Newton's corrections in the
+// pieces of a split step stop at a fraction of the local error tolerance. On the squeezer, whose
+// every step is split, each piece then takes fewer than 3 iterations (5.08 with it off), and
+// beta(0.03 s) stays within 0.1 % of the Test Set's 15.8108 (andrews.f, SOLN).
+TEST_CASE("Andrews' squeezing mechanism with pieces converged to a fraction of the local error") {
+  const auto s = andrews::make_squeezer();
+  REQUIRE_MESSAGE(s.ok(), s.error().what());
+  ImplicitSettings<double> settings;
+  settings.piece_newton_tolerance_fraction = 1.5;
+  Data<double> d(s->model);
+  CHECK_FALSE(set_settings(s->model, d, settings).ok());  // a fraction above 1 is refused
+  settings.piece_newton_tolerance_fraction = 1e-2;
+  REQUIRE(set_settings(s->model, d, settings).ok());
+  REQUIRE(initialize(s->model, d).ok());
+  double beta = andrews::beta;
+  for (int i = 0; i < 30; ++i) {
+    const StepStatus st = step(s->model, d);
+    REQUIRE_MESSAGE(st == StepStatus::ok, to_string(st) << ": " << d.message.data());
+    beta += std::remainder(andrews::heading(s->model, d, s->crank) - beta, 2 * 3.14159265358979);
+  }
+  const double per_piece = double(d.statistics.iterations) / double(d.statistics.substeps);
+  MESSAGE("pieces " << d.statistics.substeps << ", iterations per piece " << per_piece
+                    << ", beta(0.03 s) " << beta << " (" << 100 * (beta / andrews::beta_end - 1)
+                    << " % from the Test Set)");
+  CHECK(d.statistics.split_steps == 30);
+  CHECK(per_piece < 3.0);
+  CHECK(std::abs(beta / andrews::beta_end - 1) < 1e-3);
+}
+
 // A flexible four-bar near a toggle position: a crank of 0.2 m turned about the ground at
 // (0, 0), the 2 m suite beam's section as a coupler of 1 m (8 modes, both pins interface nodes),
 // a rigid rocker of 0.3 m about the ground at (0.905, 0). Grashof by 0.005 m (a crank-rocker

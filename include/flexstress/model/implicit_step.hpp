@@ -229,6 +229,12 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
                                s.relative_acceleration_tolerance * in.acceleration_scale) /
                           in.beta_prime,
                       s.position_floor * std::max(Scalar(1), max_abs(in.q_n)));
+  // The joints are met to it always. A piece of a split step was taken because its step's
+  // local error reached local_error_tolerance; its corrections may stop at a fraction of that
+  // error instead (piece_newton_tolerance_fraction; off by default, step_settings.hpp says why).
+  const Scalar tol_phi = in.tol_x;
+  if (in.h != s.step && s.local_error_tolerance > Scalar(0))
+    in.tol_x = std::max(in.tol_x, s.piece_newton_tolerance_fraction * s.local_error_tolerance);
   copy_same_size(in.lambda_star, in.lambda_last);
   // Predictor: v_dot and lambda extrapolated linearly from the last two steps.
   if (in.has_previous && s.extrapolate_predictor && in.predict_linear)
@@ -331,7 +337,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     // step's nonlinearity, which a larger penalty, whose transient forces alpha Phi the matrix
     // leaves out, makes worse: the flexible slider crank at 1 ms.)
     slow = fresh && it > 0 && previous > in.tol_x && previous > Scalar(0.25) * last &&
-                   max_abs(d.phi) <= in.tol_x
+                   max_abs(d.phi) <= tol_phi
                ? slow + 1
                : 0;
     if (slow >= 2 && s.penalty_factor > Scalar(0) &&
@@ -373,11 +379,11 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     // tolerance, the constraints count as met if Phi + B dx is: the violation at the new
     // iterate to first order (the rest, of order |dx|^2 over the mechanism's lengths, is far
     // below the tolerance once the correction or the error it leaves is within it).
-    bool constraints_met = max_abs(d.phi) <= in.tol_x;
+    bool constraints_met = max_abs(d.phi) <= tol_phi;
     if (left <= in.tol_x && !constraints_met) {
       jacobian_times(model, d, in.dx, in.e);
       in.e += d.phi;
-      constraints_met = max_abs(in.e) <= in.tol_x;
+      constraints_met = max_abs(in.e) <= tol_phi;
       met_to_first_order = constraints_met;
     }
     if (left <= in.tol_x && constraints_met) {

@@ -99,7 +99,8 @@ TEST_CASE("runtime model: a hinged flexible beam's frequencies equal the pinned-
 
 // A rigid pendulum on a spherical joint, 1 m from the pivot to its centre of mass, started
 // 0.2 rad off the vertical: its static equilibrium is straight under the pivot (statics: the
-// weight's moment about the pivot vanishes only there). The iteration diverged when it kept
+// weight's moment about the pivot vanishes only there), and linearized there it swings as a
+// compound pendulum. The iteration diverged when it kept
 // its matrix while the pendulum turned (solve_static_equilibrium reported a NaN correction).
 TEST_CASE(
     "runtime model: static equilibrium of a pendulum started off the vertical hangs under the "
@@ -116,12 +117,28 @@ TEST_CASE(
   const auto m = b.finalize();
   REQUIRE_MESSAGE(m.ok(), m.error().what());
   Data<double> d(*m);
+  // Linearized where it starts, off the vertical with no joint force yet, the static residual
+  // says it is no equilibrium: the weight m g on the bob's frame at its centre of mass.
+  const auto off = linearize(*m, d);
+  REQUIRE(off.ok());
+  CHECK(off->static_residual == doctest::Approx(50.0 * 9.81).epsilon(1e-9));
   const Status st = solve_static_equilibrium(*m, d);
   REQUIRE_MESSAGE(st.ok(), st.error().what());
   const Vector3d p = body_position(*m, d, bob);
   CHECK(std::abs(p.x()) < 1e-8);
   CHECK(std::abs(p.y()) < 1e-8);
   CHECK(p.z() == doctest::Approx(-1.0).epsilon(1e-9));
+  // At rest: residual gone, and the two swings at the compound pendulum's frequency,
+  // omega^2 = m g l / (I + m l^2) (l = 1 m to the centre of mass, I = 0.2 kg m^2 about it);
+  // the spin about the vertical is free (0 Hz).
+  const auto lin = linearize(*m, d);
+  REQUIRE(lin.ok());
+  CHECK(lin->static_residual < 1e-8 * 50.0 * 9.81);
+  const double f = std::sqrt(50.0 * 9.81 / (0.2 + 50.0)) / (2 * 3.14159265358979);
+  REQUIRE(lin->frequencies_hz.size() == 3);
+  CHECK(std::abs(lin->frequencies_hz(0)) < 1e-3);
+  CHECK(lin->frequencies_hz(1) == doctest::Approx(f).epsilon(1e-6));
+  CHECK(lin->frequencies_hz(2) == doctest::Approx(f).epsilon(1e-6));
 }
 
 TEST_CASE("runtime model: static equilibrium of a clamped cantilever matches the FE solution") {

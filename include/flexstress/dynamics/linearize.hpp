@@ -28,6 +28,11 @@ struct Linearization {
   /// coordinates, as d.v), orthonormal in the mass matrix (modes^T M modes = I) and allowed by
   /// the joints (B modes = 0).
   Eigen::MatrixXd modes;
+  /// The largest entry of the static residual -Q + B^T lambda at the state linearized about
+  /// (each coordinate's force or moment, as d.force): near 0 at a static equilibrium with its
+  /// multipliers; far from 0, the state is not one (or d.lambda is not its multipliers), and
+  /// mass and stiffness describe no small vibration about it. linearize() sets it.
+  double static_residual = 0;
 };
 
 /// M and K (nv x nv) projected on an orthonormal basis of the null space of B (the motions the

@@ -230,7 +230,8 @@ Status solve_static_equilibrium(const Model<Scalar>& model, Data<Scalar>& d,
 }
 
 /// Linearizes about the state of d (velocities treated as zero; d.lambda must hold the
-/// equilibrium multipliers, e.g. from solve_static_equilibrium). d's workspace is overwritten.
+/// equilibrium multipliers, e.g. from solve_static_equilibrium; Linearization::static_residual
+/// says how far the state is from that). d's workspace is overwritten.
 template <class Scalar>
 Result<Linearization> linearize(const Model<Scalar>& model, Data<Scalar>& d, double step = 1e-7) {
   const int nv = model.num_velocities();
@@ -255,6 +256,8 @@ Result<Linearization> linearize(const Model<Scalar>& model, Data<Scalar>& d, dou
     add_jacobian_transpose_times(model, d, lambda, res);
     return Eigen::VectorXd(res.template cast<double>());
   };
+  const double static_residual =
+      nv > 0 ? residual(Eigen::VectorXd::Zero(nv)).cwiseAbs().maxCoeff() : 0.0;
   Eigen::MatrixXd k(nv, nv);
   for (int j = 0; j < nv; ++j) {
     Eigen::VectorXd e = Eigen::VectorXd::Zero(nv);
@@ -264,7 +267,9 @@ Result<Linearization> linearize(const Model<Scalar>& model, Data<Scalar>& d, dou
   d.q = q0;
   d.v = v0;
   evaluate(model, d);
-  return linearization_on_null_space(m, k, b);
+  auto lin = linearization_on_null_space(m, k, b);
+  if (lin) lin->static_residual = static_residual;
+  return lin;
 }
 
 }  // namespace flexstress

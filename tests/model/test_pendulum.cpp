@@ -264,6 +264,36 @@ TEST_CASE("a step too large for the motion says so before any state turns non-fi
   }
 }
 
+namespace {
+// A stiff restoring force from outside (a point load the iteration matrix does not see):
+// F = -k x along x, k = 1e11 N/m on 1 kg, which no step down to a sixteenth of 1 ms resolves
+// (k h^2 is 6e3 there).
+void stiff_return(double /*t*/, const double* position, const double* /*velocity*/, double* force,
+                  double* /*moment*/, void* /*user*/) {
+  force[0] = -1e11 * position[0];
+}
+}  // namespace
+
+TEST_CASE("a step that diverges where nothing turns says the rotation is not the reason") {
+  ModelBuilder<double> b;
+  const BodyId block = b.add_rigid_body("block", 1.0, Vector3d::Zero(), Matrix3d::Identity());
+  b.add_point_load("stiff return", b.add_marker("centre", block, -1), &stiff_return);
+  b.set_gravity(Vector3d::Zero());
+  const auto m = b.finalize();
+  REQUIRE_MESSAGE(m.ok(), m.error().what());
+  Data<double> d(*m);
+  set_body_velocity(*m, d, block, Vector3d(0.01, 0, 0), Vector3d::Zero());
+  REQUIRE(initialize(*m, d).ok());
+  StepStatus st = StepStatus::ok;
+  for (int i = 0; i < 10 && st == StepStatus::ok; ++i) st = step(*m, d);
+  const std::string why = d.message.data();
+  MESSAGE(why);
+  CHECK(st == StepStatus::step_too_large);
+  CHECK(d.q.allFinite());
+  CHECK(why.find("no body turns by more than 0 rad per step (body 'block')") != std::string::npos);
+  CHECK(why.find("a stiff force or mode rather than the rotation") != std::string::npos);
+}
+
 TEST_CASE("a step too large for the motion is taken in pieces and ends where it should") {
   // The same spinning pendulum on the default max_step_halvings: the steps of 0.1 and 0.03 s
   // that fail whole are taken in halves (down to 1/16), and the runs reach 0.2 s. The bob

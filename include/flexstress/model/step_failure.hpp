@@ -144,10 +144,18 @@ void explain_step_failure(const Model<Scalar>& model, Data<Scalar>& d, StepStatu
   Scalar turn = Scalar(0);
   const int fastest = fastest_turning_body(model, d.integrator.v_n, h, turn);
   char turning[192] = "";
-  if (fastest >= 0)
+  // A divergence where nothing turns fast is not the rotation's: say so rather than name a
+  // body that barely moves as the reason.
+  if (fastest >= 0 && (turn >= Scalar(1e-3) || status != StepStatus::step_too_large))
     std::snprintf(turning, sizeof turning, "; body '%s' turns by %.3g rad per step",
                   model.bodies()[static_cast<std::size_t>(fastest)].name.c_str(),
                   static_cast<double>(turn));
+  else if (fastest >= 0)
+    std::snprintf(turning, sizeof turning,
+                  "; no body turns by more than %.3g rad per step (body '%s'): a stiff force or "
+                  "mode rather than the rotation",
+                  static_cast<double>(turn),
+                  model.bodies()[static_cast<std::size_t>(fastest)].name.c_str());
   if (status == StepStatus::non_finite_state) {
     const int body = nonfinite_body(model, d);
     std::snprintf(d.message.data(), d.message.size(),

@@ -106,6 +106,9 @@ int fs_settings_get(const fs_data* d, fs_settings* out) {
   out->project_velocities = s.project_velocities ? 1 : 0;
   out->newton_error_estimate_fraction = s.newton_error_estimate_fraction;
   out->keep_stalled_steps = s.keep_stalled_steps ? 1 : 0;
+  out->linearized_multipliers = static_cast<int>(s.linearized_multipliers);
+  out->refactorize_pieces = s.refactorize_pieces ? 1 : 0;
+  out->piece_newton_tolerance_fraction = s.piece_newton_tolerance_fraction;
   return FS_OK;
 }
 
@@ -125,6 +128,9 @@ int fs_settings_set(fs_data* d, const fs_settings* in) {
     s.project_velocities = in->project_velocities != 0;
     s.newton_error_estimate_fraction = in->newton_error_estimate_fraction;
     s.keep_stalled_steps = in->keep_stalled_steps != 0;
+    s.linearized_multipliers = static_cast<fsx::LinearizedMultipliers>(in->linearized_multipliers);
+    s.refactorize_pieces = in->refactorize_pieces != 0;
+    s.piece_newton_tolerance_fraction = in->piece_newton_tolerance_fraction;
     const fsx::Status st = fsx::set_settings(*d->model, d->data, s);
     if (!st.ok()) return fail(FS_ERROR_INVALID_ARGUMENT, "fs_settings_set: " + st.error().what());
     return int(FS_OK);

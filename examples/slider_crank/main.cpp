@@ -12,7 +12,7 @@
 //                [--error-tolerance E] [--penalty F] [--rho R] [--max-iterations N]
 //                [--accept-at-limit] [--newton-budget N]
 //                [--no-extrapolate] [--no-extrapolate-predictor]
-//                [--no-extrapolate-multipliers]
+//                [--no-extrapolate-multipliers] [--pieces-as-whole-steps]
 //
 // --newton-budget N: a real-time budget, --max-iterations N with --accept-at-limit: a step that
 // reaches N iterations keeps its last iterate and the run goes on; the summary counts those
@@ -88,6 +88,7 @@ int usage() {
          "                    [--max-iterations N]\n"
          "                    [--accept-at-limit] [--newton-budget N] [--no-extrapolate]\n"
          "                    [--no-extrapolate-predictor] [--no-extrapolate-multipliers]\n"
+         "                    [--pieces-as-whole-steps]\n"
          "  --newton-budget N: at most N Newton iterations per step; a step that reaches\n"
          "  them keeps its last iterate and the run goes on (--max-iterations N with\n"
          "  --accept-at-limit); the summary counts the steps kept at the budget\n";
@@ -138,6 +139,10 @@ int main(int argc, char** argv) {
       changed.push_back(a);
     } else if (a == "--no-reuse-factorization") {
       settings.reuse_factorization = false;
+      changed.push_back(a);
+    } else if (a == "--pieces-as-whole-steps") {  // Newton in a split step's pieces
+      settings.linearized_multipliers = LinearizedMultipliers::off;
+      settings.refactorize_pieces = false;
       changed.push_back(a);
     } else if (a == "--no-corotate") {
       settings.corotate_factorization = false;

@@ -280,7 +280,17 @@ typedef struct fs_settings {
   double newton_error_estimate_fraction;  /* in [0, 1]: stop on the estimated error; 0: off */
   int keep_stalled_steps; /* 1 (default): a step whose Newton stalled at the limit within the
                            * joints' tolerance (a singular configuration) is kept */
+  int linearized_multipliers; /* an fs_linearized_multipliers: where each correction also
+                               * updates the multipliers on the linearized constraints */
+  int refactorize_pieces;     /* 1 (default): a split step's pieces factorize at every correction */
+  double piece_newton_tolerance_fraction; /* in [0, 1]: a piece's corrections stop at this
+                                           * fraction of local_error_tolerance; 0 (default): off */
 } fs_settings;
+typedef enum fs_linearized_multipliers {
+  FS_LINEARIZED_MULTIPLIERS_OFF = 0,
+  FS_LINEARIZED_MULTIPLIERS_PIECES = 1, /* default: in the pieces of a split step */
+  FS_LINEARIZED_MULTIPLIERS_ALWAYS = 2
+} fs_linearized_multipliers;
 int fs_settings_get(const fs_data* d, fs_settings* out);
 int fs_settings_set(fs_data* d, const fs_settings* settings);
 double fs_time(const fs_data* d); /* s; NaN for a null data */

@@ -494,6 +494,21 @@ static void check_errors(const char* modal_file, const reference* r) {
   CHECK(settings.max_step_halvings == 0 && settings.relative_acceleration_tolerance == 1e-8);
   CHECK(settings.newton_error_estimate_fraction == 0.0);
   CHECK(settings.step == 5e-4);
+  CHECK(settings.linearized_multipliers == FS_LINEARIZED_MULTIPLIERS_PIECES);
+  CHECK(settings.refactorize_pieces == 1 && settings.piece_newton_tolerance_fraction == 0.0);
+  settings.linearized_multipliers = 3; /* not one of fs_linearized_multipliers */
+  CHECK(fs_settings_set(d, &settings) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_last_error(), "linearized_multipliers") != NULL);
+  settings.linearized_multipliers = FS_LINEARIZED_MULTIPLIERS_ALWAYS;
+  settings.piece_newton_tolerance_fraction = 2.0;
+  CHECK(fs_settings_set(d, &settings) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_last_error(), "piece_newton_tolerance_fraction") != NULL);
+  settings.piece_newton_tolerance_fraction = 0.01;
+  settings.refactorize_pieces = 0;
+  CHECK(fs_settings_set(d, &settings) == FS_OK);
+  CHECK(fs_settings_get(d, &settings) == FS_OK);
+  CHECK(settings.linearized_multipliers == FS_LINEARIZED_MULTIPLIERS_ALWAYS);
+  CHECK(settings.refactorize_pieces == 0 && settings.piece_newton_tolerance_fraction == 0.01);
   CHECK(fs_settings_set(d, NULL) == FS_ERROR_NULL);
   fs_data_destroy(d);
   fs_model_destroy(m);

@@ -101,6 +101,7 @@ bool converged_runs() {
 /// What check_case measured: the quantity at the end of each run.
 struct Outcome {
   double reference_end = 0, default_end = 0;
+  StepStatistics statistics;  ///< of the run on the defaults
 };
 
 /// Runs a case on the defaults and against its reference, reports and checks it.
@@ -155,6 +156,7 @@ Outcome check_case(const SuiteCase& c) {
   Outcome o;
   if (!ref.y.empty()) o.reference_end = ref.y.back();
   if (!def.y.empty()) o.default_end = def.y.back();
+  o.statistics = s;
   return o;
 }
 
@@ -361,12 +363,71 @@ TEST_CASE("stress suite: Andrews' squeezing mechanism, three loops and a stiff s
           << andrews::beta_end << " (defaults " << 100 * (out.default_end / andrews::beta_end - 1)
           << " %, reference run " << 100 * (out.reference_end / andrews::beta_end - 1) << " %)");
   CHECK(std::abs(out.default_end / andrews::beta_end - 1) < 1e-3);
+  // Every step split; Newton in the pieces, with the multiplier pass, under 3 per piece.
+  CHECK(out.statistics.split_steps == 30);
+  CHECK(double(out.statistics.iterations) < 3.0 * double(out.statistics.substeps));
+}
+
+namespace {
+namespace andrews {
+/// The squeezer's 30 steps of 1 ms on `settings`, each step passing: beta(0.03 s), iterations
+/// per piece (every step is split).
+struct SqueezerRun {
+  double beta = 0, per_piece = 0;
+  StepStatistics statistics;
+};
+SqueezerRun run_squeezer(const Squeezer& s, const ImplicitSettings<double>& settings) {
+  SqueezerRun r;
+  Data<double> d(s.model);
+  REQUIRE(set_settings(s.model, d, settings).ok());
+  REQUIRE(initialize(s.model, d).ok());
+  r.beta = beta;
+  for (int i = 0; i < 30; ++i) {
+    const StepStatus st = step(s.model, d);
+    REQUIRE_MESSAGE(st == StepStatus::ok, to_string(st) << ": " << d.message.data());
+    r.beta += std::remainder(heading(s.model, d, s.crank) - r.beta, 2 * 3.14159265358979);
+  }
+  r.statistics = d.statistics;
+  r.per_piece = double(d.statistics.iterations) / double(d.statistics.substeps);
+  MESSAGE("pieces " << d.statistics.substeps << ", iterations per piece " << r.per_piece
+                    << ", beta(0.03 s) " << r.beta << " (" << 100 * (r.beta / beta_end - 1)
+                    << " % from the Test Set)");
+  CHECK(d.statistics.split_steps == 30);
+  CHECK(std::abs(r.beta / beta_end - 1) < 1e-3);
+  return r;
+}
+}  // namespace andrews
+}  // namespace
+
+// The pieces' Newton with and without its multiplier pass (linearized_multipliers) and a matrix
+// of each iterate (refactorize_pieces): without both, a piece's multipliers move only between
+// corrections, each correction first answers the multipliers' predictor error with motion, and
+// Newton contracts linearly (5.08 iterations per piece); with them, quadratically. Either way
+// beta(0.03 s) within 0.1 % of the Test Set's 15.8108 (andrews.f, SOLN).
+TEST_CASE("Andrews' squeezing mechanism: the pieces' Newton with and without the multiplier pass") {
+  const auto s = andrews::make_squeezer();
+  REQUIRE_MESSAGE(s.ok(), s.error().what());
+  const auto per_piece = [&](LinearizedMultipliers where, bool refactorize) {
+    ImplicitSettings<double> settings;
+    settings.linearized_multipliers = where;
+    settings.refactorize_pieces = refactorize;
+    return andrews::run_squeezer(*s, settings).per_piece;
+  };
+  CHECK(per_piece(LinearizedMultipliers::off, false) > 4.0);
+  CHECK(per_piece(LinearizedMultipliers::pieces, true) < 3.0);
+  CHECK(per_piece(LinearizedMultipliers::always, true) < 3.0);
+  ImplicitSettings<double> bad;
+  bad.linearized_multipliers = static_cast<LinearizedMultipliers>(7);
+  Data<double> d(s->model);
+  const Status refused = set_settings(s->model, d, bad);
+  REQUIRE_FALSE(refused.ok());
+  CHECK(refused.error().what().find("linearized_multipliers") != std::string::npos);
 }
 
 // The option piece_newton_tolerance_fraction (off by default): Newton's corrections in the
 // pieces of a split step stop at a fraction of the local error tolerance. On the squeezer, whose
-// every step is split, each piece then takes fewer than 3 iterations (5.08 with it off), and
-// beta(0.03 s) stays within 0.1 % of the Test Set's 15.8108 (andrews.f, SOLN).
+// every step is split, each piece then takes fewer than 3 iterations, and beta(0.03 s) stays
+// within 0.1 % of the Test Set's 15.8108 (andrews.f, SOLN).
 TEST_CASE("Andrews' squeezing mechanism with pieces converged to a fraction of the local error") {
   const auto s = andrews::make_squeezer();
   REQUIRE_MESSAGE(s.ok(), s.error().what());
@@ -375,21 +436,7 @@ TEST_CASE("Andrews' squeezing mechanism with pieces converged to a fraction of t
   Data<double> d(s->model);
   CHECK_FALSE(set_settings(s->model, d, settings).ok());  // a fraction above 1 is refused
   settings.piece_newton_tolerance_fraction = 1e-2;
-  REQUIRE(set_settings(s->model, d, settings).ok());
-  REQUIRE(initialize(s->model, d).ok());
-  double beta = andrews::beta;
-  for (int i = 0; i < 30; ++i) {
-    const StepStatus st = step(s->model, d);
-    REQUIRE_MESSAGE(st == StepStatus::ok, to_string(st) << ": " << d.message.data());
-    beta += std::remainder(andrews::heading(s->model, d, s->crank) - beta, 2 * 3.14159265358979);
-  }
-  const double per_piece = double(d.statistics.iterations) / double(d.statistics.substeps);
-  MESSAGE("pieces " << d.statistics.substeps << ", iterations per piece " << per_piece
-                    << ", beta(0.03 s) " << beta << " (" << 100 * (beta / andrews::beta_end - 1)
-                    << " % from the Test Set)");
-  CHECK(d.statistics.split_steps == 30);
-  CHECK(per_piece < 3.0);
-  CHECK(std::abs(beta / andrews::beta_end - 1) < 1e-3);
+  CHECK(andrews::run_squeezer(*s, settings).per_piece < 3.0);
 }
 
 // A flexible four-bar near a toggle position: a crank of 0.2 m turned about the ground at

@@ -11,6 +11,14 @@
 
 namespace flexstress {
 
+/// Where each Newton correction also updates the multipliers on the linearized constraints
+/// (ImplicitSettings::linearized_multipliers).
+enum class LinearizedMultipliers {
+  off,     ///< the multipliers move only between corrections (lambda* += alpha Phi)
+  pieces,  ///< in the pieces of a split step
+  always,  ///< in every step
+};
+
 template <class Scalar>
 struct ImplicitSettings {
   Scalar step = Scalar(1e-3);
@@ -191,15 +199,27 @@ struct ImplicitSettings {
   /// Newton's corrections in the pieces of a split step stop at this fraction of
   /// local_error_tolerance (when that is above the acceleration tolerance; the joints are met to
   /// the acceleration tolerance all the same): a piece is taken because its step's local error
-  /// reached the tolerance, and its predictor misses by about that error, from which Newton's
-  /// linear contraction needs four or five corrections to the acceleration tolerance (Hairer &
-  /// Wanner, Solving ODEs II, IV.8: Newton to kappa Tol, kappa 0.01 to 0.1). At 1e-2: Andrews'
-  /// squeezer 2.78 instead of 5.08 iterations per piece (beta at 0.03 s -0.034 % from the Test
-  /// Set's instead of -0.033 %), the slider crank at 1 ms 16.6 instead of 22.7 per step; but the
-  /// violent random mechanisms' energy drifts more (the conservative ones' largest growth 77 %
-  /// instead of 15 % of their kinetic energy, 14 instead of 9 above 1 %), so it is off by default.
+  /// reached the tolerance (Hairer & Wanner, Solving ODEs II, IV.8: Newton to kappa Tol, kappa
+  /// 0.01 to 0.1). Measured with the pieces' Newton as whole steps' (linearized_multipliers off,
+  /// refactorize_pieces false) at 1e-2: Andrews' squeezer 2.78 instead of 5.08 iterations per
+  /// piece, but the violent random mechanisms' energy drifted more (the conservative ones'
+  /// largest growth 77 % instead of 15 % of their kinetic energy), so it is off by default; the
+  /// defaults' multiplier pass brings the squeezer to 2.33 per piece on its own.
   /// 0: pieces converge as whole steps.
   Scalar piece_newton_tolerance_fraction = Scalar(0);
+  /// Each Newton correction dx also takes one Uzawa pass on the linearized constraints: the
+  /// multipliers move by e = alpha (Phi + B dx) and the correction by -S^-1 B^T e (one more
+  /// solve with the same factorization, two products with B). Between corrections the augmented
+  /// Lagrangian moves them by alpha Phi only after the state has answered the old ones, so an
+  /// error of the multipliers' predictor dl first moves the state by about dl / (M b') and is
+  /// then undone, a Newton correction that contracts linearly; with the pass, it contracts
+  /// quadratically, and Newton's error estimate (newton_error_estimate_fraction) is trusted
+  /// in the pieces of a split step too. Where: see LinearizedMultipliers.
+  LinearizedMultipliers linearized_multipliers = LinearizedMultipliers::pieces;
+  /// The pieces of a split step factorize the iteration matrix at every correction (Newton
+  /// instead of modified Newton; each piece starts with a fresh one either way): pieces are
+  /// taken where the motion outruns a matrix. Whole steps keep reuse_factorization.
+  bool refactorize_pieces = true;
 };
 
 /// Success, or an error naming the first setting out of its range.
@@ -223,6 +243,10 @@ Status check_settings(const ImplicitSettings<Scalar>& s) {
     return bad("newton_error_estimate_fraction must be in [0, 1] (0: off)");
   if (!non_negative(s.local_error_tolerance))
     return bad("local_error_tolerance must be finite and not negative (0: no control)");
+  if (s.linearized_multipliers != LinearizedMultipliers::off &&
+      s.linearized_multipliers != LinearizedMultipliers::pieces &&
+      s.linearized_multipliers != LinearizedMultipliers::always)
+    return bad("linearized_multipliers must be off, pieces or always");
   if (!(s.piece_newton_tolerance_fraction >= Scalar(0)) ||
       !(s.piece_newton_tolerance_fraction <= Scalar(1)))
     return bad("piece_newton_tolerance_fraction must be in [0, 1] (0: pieces as whole steps)");

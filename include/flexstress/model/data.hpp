@@ -114,7 +114,9 @@ struct Data {
     /// lambda_last: the augmented Lagrangian's lambda* at the end of the last step (the next
     /// step starts from it; d.lambda is the multipliers, lambda* + alpha Phi); lambda_increment:
     /// the change the predictor adds to it (ImplicitSettings::multiplier_trend_memory).
-    VectorX e, lambda_star, lambda_last, lambda_increment, lambda_save;
+    /// lambda_pass: a correction's multiplier update on the linearized constraints
+    /// (ImplicitSettings::linearized_multipliers).
+    VectorX e, lambda_star, lambda_last, lambda_increment, lambda_save, lambda_pass;
     /// The state at the start of a step retried in pieces (max_step_halvings), restored when
     /// a piece fails: coordinates, velocities, accelerations, multipliers and their history.
     VectorX q_split, v_split, vd_split, a_split, vd_prev_split, lambda_split, lambda_last_split,
@@ -200,7 +202,7 @@ struct Data {
     for (VectorX* x : {&in.v_split, &in.vd_split, &in.a_split, &in.vd_prev_split}) x->setZero(nv);
     for (VectorX* x :
          {&in.e, &in.lambda_star, &in.lambda_last, &in.lambda_increment, &in.lambda_save,
-          &in.lambda_split, &in.lambda_last_split, &in.lambda_increment_split})
+          &in.lambda_pass, &in.lambda_split, &in.lambda_last_split, &in.lambda_increment_split})
       x->setZero(nc);
     for (int k = 0; k < 4; ++k) {
       rk4.v[static_cast<std::size_t>(k)].setZero(nv);

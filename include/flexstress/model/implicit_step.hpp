@@ -21,6 +21,9 @@
 // The Newton matrix S = M b' + D g' + K + alpha B^T B (b' = (1 - am)/(h^2 b (1 - af)),
 // g' = g/(h b)) is symmetric positive definite even when B is rank-deficient (redundant joints
 // such as a planar loop modelled in 3D, singular positions), so no KKT system is ever solved.
+// Where ImplicitSettings::linearized_multipliers says, each correction dx also takes one Uzawa
+// pass on the linearized constraints (lambda* += e, dx -= S^-1 B^T e, e = alpha (Phi + B dx)):
+// the KKT step's multipliers, to the pass's contraction, so Newton contracts quadratically.
 // Modified Newton: S is factorized once and reused across iterations and steps until the
 // observed contraction rate says it is stale; it is factorized within its envelope in a body
 // order that skips the zero blocks between bodies no joint joins (core/envelope_cholesky.hpp).
@@ -233,7 +236,8 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   // local error reached local_error_tolerance; its corrections may stop at a fraction of that
   // error instead (piece_newton_tolerance_fraction; off by default, step_settings.hpp says why).
   const Scalar tol_phi = in.tol_x;
-  if (in.h != s.step && s.local_error_tolerance > Scalar(0))
+  const bool piece = in.h != s.step;  // a piece of a split step (step())
+  if (piece && s.local_error_tolerance > Scalar(0))
     in.tol_x = std::max(in.tol_x, s.piece_newton_tolerance_fraction * s.local_error_tolerance);
   copy_same_size(in.lambda_star, in.lambda_last);
   // Predictor: v_dot and lambda extrapolated linearly from the last two steps.
@@ -264,7 +268,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     evaluate(model, d, /*rates=*/false);
     // The last correction was computed with this penalty; its multiplier update uses it too.
     const Scalar penalty = in.penalty;
-    if (!in.have_factorization || !s.reuse_factorization) {
+    if (!in.have_factorization || !s.reuse_factorization || (piece && s.refactorize_pieces)) {
       detail::factorize_iteration(model, d);
       fresh = true;
     }
@@ -320,6 +324,24 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
       detail::solve_turned(model, d, in.dx, fresh);
       size = detail::correction_size(d);
     }
+    // One Uzawa pass on the linearized constraints (settings.linearized_multipliers), with a
+    // matrix of this iterate only: with a stale one, whose alpha B^T B is another B's, the pass
+    // can overshoot (it contracts only while alpha B S^-1 B^T < 2). The multipliers' update
+    // e = alpha (Phi + B dx) is applied below, with the correction.
+    const bool multiplier_pass =
+        model.num_constraints() > 0 && fresh &&
+        (s.linearized_multipliers == LinearizedMultipliers::always ||
+         (s.linearized_multipliers == LinearizedMultipliers::pieces && piece));
+    if (multiplier_pass) {
+      jacobian_times(model, d, in.dx, in.lambda_pass);
+      in.lambda_pass += d.phi;
+      in.lambda_pass *= in.penalty;
+      in.tmp.setZero();
+      add_jacobian_transpose_times(model, d, in.lambda_pass, in.tmp);
+      detail::solve_turned(model, d, in.tmp, fresh);
+      in.dx -= in.tmp;
+      size = detail::correction_size(d);
+    }
     const Scalar last = previous;
     previous = size;
     stalled = fresh && it > 0 && previous > Scalar(0.5) * last;
@@ -362,15 +384,17 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     }
     residual_prev = residual;
     scaled_residual_prev = scaled_residual;
+    if (multiplier_pass) in.lambda_star += in.lambda_pass;
     integrate_coordinates(model, d.q, in.dx);
     d.v_dot.noalias() += in.beta_prime * in.dx;
     d.v.noalias() += in.gamma_prime * in.dx;
     // Converged when this correction is within the tolerance, or (whole steps) when the error
     // it leaves is: theta / (1 - theta) |dx| with the contraction rate theta = |dx| / |dx_prev|
     // (Hairer & Wanner, Solving ODEs II, IV.8 (8.10)). The pieces of a split step, taken where
-    // the motion outruns the matrix, do not trust that rate.
+    // the motion outruns the matrix, trust that rate only where the multiplier pass makes the
+    // contraction quadratic.
     left = previous;
-    if (left > in.tol_x && it > 0 && in.h == s.step &&
+    if (left > in.tol_x && it > 0 && (!piece || multiplier_pass) &&
         s.newton_error_estimate_fraction > Scalar(0) && previous < last && std::isfinite(last)) {
       const Scalar theta = previous / last, estimate = theta / (Scalar(1) - theta) * previous;
       if (estimate <= s.newton_error_estimate_fraction * in.tol_x) left = estimate;

@@ -14,6 +14,31 @@
 
 using namespace flexstress_c_api;
 
+namespace {
+
+/// fs_linearize and fs_linearized_frequencies, errors named after the function called.
+int linearize_into(const char* function, fs_data* d, double* hz, int capacity, int* count,
+                   double* static_residual) {
+  if (count) *count = 0;
+  if (static_residual) *static_residual = kNaN;
+  return guarded(function, [&] {
+    if (!d || (!hz && capacity > 0)) return null_argument(function);
+    auto lin = fsx::linearize(*d->model, d->data);
+    if (!lin) return error_status(d, lin.error());
+    const int n = static_cast<int>(lin->frequencies_hz.size());
+    if (count) *count = n;
+    if (static_residual) *static_residual = lin->static_residual;
+    for (int k = 0; k < std::min(n, std::max(capacity, 0)); ++k) hz[k] = lin->frequencies_hz(k);
+    if (capacity < n)
+      return fail(FS_ERROR_BUFFER_TOO_SMALL, std::string(function) + ": " + std::to_string(n) +
+                                                 " frequencies, room for " +
+                                                 std::to_string(capacity));
+    return int(FS_OK);
+  });
+}
+
+}  // namespace
+
 extern "C" {
 
 // ---- data -----------------------------------------------------------------------------------
@@ -394,21 +419,12 @@ long long fs_meter_refused_samples(const fs_data* d, int meter) {
   return static_cast<long long>(fsx::meter_refused_samples(d->data, fsx::MeterId{meter}));
 }
 
+int fs_linearize(fs_data* d, double* hz, int capacity, int* count, double* static_residual) {
+  return linearize_into("fs_linearize", d, hz, capacity, count, static_residual);
+}
+
 int fs_linearized_frequencies(fs_data* d, double* hz, int capacity, int* count) {
-  if (count) *count = 0;
-  return guarded("fs_linearized_frequencies", [&] {
-    if (!d || (!hz && capacity > 0)) return null_argument("fs_linearized_frequencies");
-    auto lin = fsx::linearize(*d->model, d->data);
-    if (!lin) return error_status(d, lin.error());
-    const int n = static_cast<int>(lin->frequencies_hz.size());
-    if (count) *count = n;
-    for (int k = 0; k < std::min(n, std::max(capacity, 0)); ++k) hz[k] = lin->frequencies_hz(k);
-    if (capacity < n)
-      return fail(FS_ERROR_BUFFER_TOO_SMALL, "fs_linearized_frequencies: " + std::to_string(n) +
-                                                 " frequencies, room for " +
-                                                 std::to_string(capacity));
-    return int(FS_OK);
-  });
+  return linearize_into("fs_linearized_frequencies", d, hz, capacity, count, nullptr);
 }
 
 }  // extern "C"

@@ -376,6 +376,10 @@ long long fs_meter_refused_samples(const fs_data* d, int meter);
  * an equilibrium (fs_solve_static_equilibrium). Writes min(capacity, count) of them to hz and
  * the full count to *count (if not NULL); FS_ERROR_BUFFER_TOO_SMALL if some did not fit. */
 int fs_linearized_frequencies(fs_data* d, double* hz, int capacity, int* count);
+/* The same, and (if static_residual is not NULL) how far the state is from the equilibrium it
+ * is linearized about: the largest entry of -Q + B^T lambda there (N, N m and modal forces), 0
+ * to round-off after fs_solve_static_equilibrium. */
+int fs_linearize(fs_data* d, double* hz, int capacity, int* count, double* static_residual);
 
 #ifdef __cplusplus
 }

@@ -31,6 +31,7 @@
 #define FLEXSTRESS_H
 
 #include <stddef.h>
+#include "flexstress/version.hpp"
 
 #ifdef __cplusplus
 extern "C" {
@@ -119,7 +120,10 @@ fs_motion_law fs_law_callback(fs_motion_callback callback, void* user);
 fs_motion_law fs_law_input(int input);
 
 /* ---- version ----------------------------------------------------------------------------- */
-const char* fs_version(void); /* "0.1.0" */
+/* The library's version; FLEXSTRESS_VERSION (flexstress/version.hpp) is the header's. Structures
+ * such as fs_settings may grow between minor versions: a program built against another
+ * version's header must be rebuilt (check fs_version_number() == FLEXSTRESS_VERSION). */
+const char* fs_version(void); /* "0.2.0" */
 int fs_version_number(void);  /* major * 10000 + minor * 100 + patch */
 /* The message of this thread's last failing call; "" if none. Valid until its next call. */
 const char* fs_last_error(void);
@@ -378,7 +382,8 @@ long long fs_meter_refused_samples(const fs_data* d, int meter);
 int fs_linearized_frequencies(fs_data* d, double* hz, int capacity, int* count);
 /* The same, and (if static_residual is not NULL) how far the state is from the equilibrium it
  * is linearized about: the largest entry of -Q + B^T lambda there (N, N m and modal forces), 0
- * to round-off after fs_solve_static_equilibrium. */
+ * to round-off after fs_solve_static_equilibrium. On an error before the linearization, *count
+ * is 0 and *static_residual NaN. */
 int fs_linearize(fs_data* d, double* hz, int capacity, int* count, double* static_residual);
 
 #ifdef __cplusplus

@@ -1,14 +1,18 @@
-// flexstress version. CMake reads the three numbers below; keep the format.
+/* flexstress version. CMake reads the three numbers below; keep the format. C and C++: the C
+ * interface (flexstress.h) includes it, so that a program can compare the header it was
+ * compiled against with the library it runs with (fs_version_number() == FLEXSTRESS_VERSION). */
 #pragma once
 
 #define FLEXSTRESS_VERSION_MAJOR 0
-#define FLEXSTRESS_VERSION_MINOR 1
+#define FLEXSTRESS_VERSION_MINOR 2
 #define FLEXSTRESS_VERSION_PATCH 0
 
 #define FLEXSTRESS_VERSION \
   (FLEXSTRESS_VERSION_MAJOR * 10000 + FLEXSTRESS_VERSION_MINOR * 100 + FLEXSTRESS_VERSION_PATCH)
 
+#ifdef __cplusplus
 namespace flexstress {
 /// Version as "major.minor.patch".
-inline constexpr const char* version_string = "0.1.0";
+inline constexpr const char* version_string = "0.2.0";
 }  // namespace flexstress
+#endif

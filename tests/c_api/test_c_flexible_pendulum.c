@@ -628,7 +628,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   printf("flexstress %s (%d)\n", fs_version(), fs_version_number());
-  CHECK(fs_version_number() >= 100 && strlen(fs_version()) >= 5);
+  CHECK(fs_version_number() == FLEXSTRESS_VERSION && strlen(fs_version()) >= 5);
   CHECK(strcmp(fs_status_string(FS_ERROR_INVALID_HANDLE), "invalid handle") == 0);
   check_frequencies(argv[1], &r);
   check_static_residual(argv[1], &r);

@@ -35,11 +35,13 @@
 #include "../../examples/crane/crane_model_impl.hpp"
 #include "../../examples/four_bar_chain/four_bar_chain.hpp"
 #include "../../examples/spin_up_beam/spin_up_model.hpp"
+#include "support/andrews_squeezer.hpp"
 #include "support/beam_fixtures.hpp"
 
 namespace test_stress_suite {
 
 using namespace flexstress;
+namespace andrews = testing::andrews;
 
 namespace {
 
@@ -233,114 +235,11 @@ TEST_CASE("stress suite: the spin-up beam spun up in 5 s instead of 15") {
   check_case(c);
 }
 
-// Andrews' squeezing mechanism (Hairer & Wanner, Solving ODEs II, sec. VII.7; problem "andrews"
-// of the IVP Test Set, F. Mazzia, C. Magherini, F. Iavernaro, andrews.f): seven rigid bodies in a
-// plane (no gravity), three closed loops through the point E, a stiff spring (c0 = 4530 N/m)
-// from the ground to body 3 and a constant torque of 0.033 N m on the crank; the crank spins up to
-// 1140 rad/s in 0.03 s. The Test Set's parameters and start, with its coordinates: beta, the
-// crank's angle; theta, the rod's from the crank; gamma, delta and epsilon, the angles of bodies
-// 3, 5 and 7 about their ground pivots B and A; phi and Omega, those of bodies 4 and 6 from
-// bodies 5 and 7. Each body's frame is at a pivot and turns by its absolute angle about z; the
-// ten hinges are 3D revolutes about z (a planar model: redundant). A centre of mass off the line
-// of a body pivoted on the ground enters the Test Set's equations only through its distance
-// from the pivot, which is what is kept here. Out of the plane each body has the inertia it has
-// about z (nothing moves it there).
-namespace {
-namespace andrews {
-constexpr double m1 = .04325, m2 = .00365, m3 = .02373, m4 = .00706, m5 = .07050, m6 = .00706,
-                 m7 = .05498;
-constexpr double i1 = 2.194e-6, i2 = 4.410e-7, i3 = 5.255e-6, i4 = 5.667e-7, i5 = 1.169e-5,
-                 i6 = 5.667e-7, i7 = 1.912e-5;
-constexpr double xa = -.06934, ya = -.00227, xb = -0.03635, yb = .03273, xc = .014, yc = .072;
-constexpr double d = 28e-3, da = 115e-4, e = 2e-2, ea = 1421e-5, rr = 7e-3, ra = 92e-5;
-constexpr double ss = 35e-3, sa = 1874e-5, sb = 1043e-5, sc = 18e-3, sd = 2e-2;
-constexpr double ta = 2308e-5, tb = 916e-5, u = 4e-2, ua = 1228e-5, ub = 449e-5;
-constexpr double zf = 2e-2, zt = 4e-2, fa = 1421e-5, mom = 33e-3, c0 = 4530, l0 = 7785e-5;
-// The Test Set's consistent start (andrews.f, INITIAL), at rest.
-constexpr double beta = -0.0617138900142764496358948458001, theta = 0,
-                 gamma = 0.455279819163070380255912382449, phi = 0.222668390165885884674473185609,
-                 delta = 0.487364979543842550225598953530,
-                 omega = -0.222668390165885884674473185609,
-                 epsilon = 1.23054744454982119249735015568;
-// The Test Set's reference at t = 0.03 s (andrews.f, SOLN: PSIDE at tolerances 1e-14).
-constexpr double beta_end = 0.1581077119629904e+2;
-
-void torque(double /*t*/, const double* /*position*/, const double* /*velocity*/, double* /*force*/,
-            double* moment, void* /*user*/) {
-  moment[2] = mom;
-}
-
-EulerParameters<double> turned(double angle) {
-  return from_rotation_matrix<double>(Eigen::AngleAxisd(angle, Vector3d::UnitZ()).matrix());
-}
-
-struct Squeezer {
-  Model<double> model;
-  BodyId crank;
-};
-
-Result<Squeezer> make_squeezer() {
-  ModelBuilder<double> b;
-  const auto body = [&](const char* name, double mass, double inertia, Vector3d com, Vector3d at,
-                        double angle) {
-    const BodyId id =
-        b.add_rigid_body(name, mass, com, Vector3d(inertia, inertia, inertia).asDiagonal());
-    b.set_initial_pose(id, at, turned(angle));
-    return id;
-  };
-  const Vector3d o(0, 0, 0), a(xa, ya, 0), bb(xb, yb, 0);
-  const Vector3d f(rr * std::cos(beta), rr * std::sin(beta), 0);
-  const Vector3d g = a + zt * Vector3d(std::cos(delta), std::sin(delta), 0);
-  const Vector3d h = a + u * Vector3d(std::sin(epsilon), -std::cos(epsilon), 0);
-  // Frames: 1 at O along OF; 2 at F (E at -d on its x); 3 at B (E at -ss on its y); 4 at G (E at
-  // -e on its y); 5 at A (G at zt on its x); 6 at H (E at zf on its x); 7 at A (H at -u on y).
-  Squeezer s;
-  s.crank = body("1 crank", m1, i1, Vector3d(ra, 0, 0), o, beta);
-  const BodyId rod = body("2 rod", m2, i2, Vector3d(-da, 0, 0), f, beta + theta);
-  const BodyId b3 = body("3", m3, i3, Vector3d(sa, sb, 0), bb, gamma);
-  const BodyId b4 = body("4", m4, i4, Vector3d(0, -(e - ea), 0), g, phi + delta);
-  const BodyId b5 = body("5", m5, i5, Vector3d(ta, tb, 0), a, delta);
-  const BodyId b6 = body("6", m6, i6, Vector3d(zf - fa, 0, 0), h, omega + epsilon);
-  const BodyId b7 = body("7", m7, i7, Vector3d(ua, ub, 0), a, epsilon);
-  const auto at = [&](BodyId on, double x, double y) {
-    return b.add_marker("pin", on, -1, Vector3d(x, y, 0));
-  };
-  const auto ground = [&](const Vector3d& p) { return b.add_marker("pivot", b.ground(), -1, p); };
-  const MarkerId crank_root = at(s.crank, 0, 0), rod_e = at(rod, -d, 0);
-  b.add_joint("O", JointKind::revolute, ground(o), crank_root);
-  b.add_joint("F", JointKind::revolute, at(s.crank, rr, 0), at(rod, 0, 0));
-  b.add_joint("E 2-3", JointKind::revolute, rod_e, at(b3, 0, -ss));
-  b.add_joint("E 2-4", JointKind::revolute, rod_e, at(b4, 0, -e));
-  b.add_joint("E 2-6", JointKind::revolute, rod_e, at(b6, zf, 0));
-  b.add_joint("B", JointKind::revolute, ground(bb), at(b3, 0, 0));
-  b.add_joint("A 5", JointKind::revolute, ground(a), at(b5, 0, 0));
-  b.add_joint("A 7", JointKind::revolute, ground(a), at(b7, 0, 0));
-  b.add_joint("G", JointKind::revolute, at(b5, zt, 0), at(b4, 0, 0));
-  b.add_joint("H", JointKind::revolute, at(b7, 0, -u), at(b6, 0, 0));
-  SpringDamperParams<double> spring;
-  spring.stiffness = c0;
-  spring.rest_length = l0;
-  b.add_spring_damper("spring", ground(Vector3d(xc, yc, 0)), at(b3, sd, -sc), spring);
-  b.add_point_load("drive", crank_root, &torque);
-  auto m = b.finalize();
-  if (!m) return m.error();
-  s.model = std::move(*m);
-  return s;
-}
-
-/// Planar angle of a body's x axis.
-double heading(const Model<double>& m, const Data<double>& data, BodyId body) {
-  const Matrix3d r = rotation_matrix(body_orientation(m, data, body));
-  return std::atan2(r(1, 0), r(0, 0));
-}
-}  // namespace andrews
-}  // namespace
-
-// The crank turns 2.5 times in 0.03 s and reaches 1140 rad/s, up to 1.1 rad per 1 ms step:
-// the local error control (local_error_tolerance) takes those steps in pieces down to 1/16.
-// Without it (a fixed 1 ms step) beta(0.03 s) ends 19 % off; the model converges at second
-// order to the Test Set's beta(0.03 s) = 15.8108 (-1.76 % at h = 0.5 ms, -0.35 % at 0.25 ms,
-// -0.086 % at 0.125 ms, -0.021 % at 62.5 us).
+// Andrews' squeezing mechanism (tests/support/andrews_squeezer.hpp): the crank turns 2.5 times in
+// 0.03 s and reaches 1140 rad/s, up to 1.1 rad per 1 ms step: the local error control
+// (local_error_tolerance) takes those steps in pieces down to 1/16. Without it (a fixed 1 ms step)
+// beta(0.03 s) ends 19 % off; the model converges at second order to the Test Set's beta(0.03 s)
+// = 15.8108 (-1.76 % at h = 0.5 ms, -0.35 % at 0.25 ms, -0.086 % at 0.125 ms, -0.021 % at 62.5 us).
 TEST_CASE("stress suite: Andrews' squeezing mechanism, three loops and a stiff spring") {
   const auto s = andrews::make_squeezer();
   REQUIRE_MESSAGE(s.ok(), s.error().what());
@@ -366,81 +265,6 @@ TEST_CASE("stress suite: Andrews' squeezing mechanism, three loops and a stiff s
   // Every step split; Newton in the pieces, with the multiplier pass, under 3 per piece.
   CHECK(out.statistics.split_steps == 30);
   CHECK(double(out.statistics.iterations) < 3.0 * double(out.statistics.substeps));
-}
-
-namespace {
-namespace andrews {
-/// The squeezer's 30 steps of 1 ms on `settings`, each step passing: beta(0.03 s), iterations
-/// per piece (every step is split).
-struct SqueezerRun {
-  double beta = 0, per_piece = 0;
-  StepStatistics statistics;
-};
-SqueezerRun run_squeezer(const Squeezer& s, const ImplicitSettings<double>& settings) {
-  SqueezerRun r;
-  Data<double> d(s.model);
-  REQUIRE(set_settings(s.model, d, settings).ok());
-  REQUIRE(initialize(s.model, d).ok());
-  r.beta = beta;
-  for (int i = 0; i < 30; ++i) {
-    const StepStatus st = step(s.model, d);
-    REQUIRE_MESSAGE(st == StepStatus::ok, to_string(st) << ": " << d.message.data());
-    r.beta += std::remainder(heading(s.model, d, s.crank) - r.beta, 2 * 3.14159265358979);
-  }
-  r.statistics = d.statistics;
-  r.per_piece = double(d.statistics.iterations) / double(d.statistics.substeps);
-  MESSAGE("pieces " << d.statistics.substeps << ", iterations per piece " << r.per_piece
-                    << ", beta(0.03 s) " << r.beta << " (" << 100 * (r.beta / beta_end - 1)
-                    << " % from the Test Set)");
-  CHECK(d.statistics.split_steps == 30);
-  CHECK(std::abs(r.beta / beta_end - 1) < 1e-3);
-  return r;
-}
-}  // namespace andrews
-}  // namespace
-
-// The pieces' Newton with and without its multiplier pass (linearized_multipliers) and a matrix
-// of each iterate (refactorize_pieces): without both, a piece's multipliers move only between
-// corrections, each correction first answers the multipliers' predictor error with motion, and
-// Newton contracts linearly (5.08 iterations per piece); with them, quadratically. Either way
-// beta(0.03 s) within 0.1 % of the Test Set's 15.8108 (andrews.f, SOLN).
-TEST_CASE("Andrews' squeezing mechanism: the pieces' Newton with and without the multiplier pass") {
-  const auto s = andrews::make_squeezer();
-  REQUIRE_MESSAGE(s.ok(), s.error().what());
-  const auto per_piece = [&](LinearizedMultipliers where, bool refactorize) {
-    ImplicitSettings<double> settings;
-    settings.linearized_multipliers = where;
-    settings.refactorize_pieces = refactorize;
-    return andrews::run_squeezer(*s, settings).per_piece;
-  };
-  const double off = per_piece(LinearizedMultipliers::off, false);
-  const double pieces = per_piece(LinearizedMultipliers::pieces, true);
-  const double always = per_piece(LinearizedMultipliers::always, true);
-  CHECK(off > 4.0);
-  CHECK(pieces < 3.0);
-  CHECK(always < 3.0);
-  ImplicitSettings<double> bad;
-  bad.linearized_multipliers = static_cast<LinearizedMultipliers>(7);
-  Data<double> d(s->model);
-  const Status refused = set_settings(s->model, d, bad);
-  REQUIRE_FALSE(refused.ok());
-  CHECK(refused.error().what().find("linearized_multipliers") != std::string::npos);
-}
-
-// The option piece_newton_tolerance_fraction (off by default): Newton's corrections in the
-// pieces of a split step stop at a fraction of the local error tolerance. On the squeezer, whose
-// every step is split, each piece then takes fewer than 3 iterations, and beta(0.03 s) stays
-// within 0.1 % of the Test Set's 15.8108 (andrews.f, SOLN).
-TEST_CASE("Andrews' squeezing mechanism with pieces converged to a fraction of the local error") {
-  const auto s = andrews::make_squeezer();
-  REQUIRE_MESSAGE(s.ok(), s.error().what());
-  ImplicitSettings<double> settings;
-  settings.piece_newton_tolerance_fraction = 1.5;
-  Data<double> d(s->model);
-  CHECK_FALSE(set_settings(s->model, d, settings).ok());  // a fraction above 1 is refused
-  settings.piece_newton_tolerance_fraction = 1e-2;
-  const double per_piece = andrews::run_squeezer(*s, settings).per_piece;
-  CHECK(per_piece < 3.0);
 }
 
 // A flexible four-bar near a toggle position: a crank of 0.2 m turned about the ground at

@@ -31,12 +31,11 @@
 
 #include <flexstress/model/all.hpp>
 
-#include "../../examples/crane/boom_reduction.hpp"
-#include "../../examples/crane/crane_model_impl.hpp"
 #include "../../examples/four_bar_chain/four_bar_chain.hpp"
 #include "../../examples/spin_up_beam/spin_up_model.hpp"
 #include "support/andrews_squeezer.hpp"
 #include "support/beam_fixtures.hpp"
+#include "support/driven_crane.hpp"
 
 namespace test_stress_suite {
 
@@ -434,35 +433,21 @@ TEST_CASE("stress suite: the 40-bar chain (IFToMM A02) through its singular conf
 // compile.)
 TEST_CASE("stress suite: the crane's work cycle, boom tip deflection" *
           doctest::test_suite("long")) {
-  const crane::CraneSpec spec;
-  const auto boom = crane::make_boom(spec, 10);
-  REQUIRE_MESSAGE(boom.ok(), boom.error().what());
-  ModelBuilder<double> b;
-  crane::assembly::Parts parts;
-  REQUIRE(crane::assembly::add_crane_parts(b, spec, *boom, crane::CraneOptions{}, parts).ok());
-  std::vector<double> t, stroke;
-  crane::synthetic_cycle(t, stroke);
-  for (double& s : stroke) s += (spec.b - spec.c).norm();
-  auto law = TableLaw<double>::create(t, stroke);
-  REQUIRE(law.ok());
-  b.add_driver("stroke", JointKind::prismatic_driver, parts.cylinder_origin, parts.rod_origin,
-               MotionLaw<double>::from_table(std::move(*law)));
-  const MarkerId hinge = b.add_marker("boom at A", parts.boom, boom->node_a);
-  const MarkerId tip = b.add_marker("boom tip", parts.boom, boom->line.nodes.back());
-  const auto m = b.finalize();
-  REQUIRE_MESSAGE(m.ok(), m.error().what());
+  const auto driven = testing::make_driven_crane();
+  REQUIRE_MESSAGE(driven.ok(), driven.error().what());
+  const Model<double>* m = &driven->model;
   SuiteCase c;
   c.name = "crane work cycle, boom tip deflection";
-  c.model = &*m;
+  c.model = m;
   c.start = [&](Data<double>& d) {
     if (Status st = solve_static_equilibrium(*m, d); !st) return st;
     return initialize(*m, d);
   };
   c.quantity = [&](const Data<double>& d) {
-    const Frame<double> a = marker_frame(*m, d, hinge);
-    return (marker_frame(*m, d, tip).origin - a.origin).dot(a.axes.col(1));
+    const Frame<double> a = marker_frame(*m, d, driven->hinge);
+    return (marker_frame(*m, d, driven->tip).origin - a.origin).dot(a.axes.col(1));
   };
-  c.duration = t.back();
+  c.duration = driven->cycle_end;
   check_case(c);
 }
 

@@ -273,8 +273,10 @@ struct StepStatistics {
   long over_budget = 0;        ///< steps kept at the iteration limit (accept_at_iteration_limit)
   long stalled_steps = 0;      ///< of those, kept with Newton stalled (keep_stalled_steps)
   long drift_projections = 0;  ///< projections made because the velocities drifted
-  long split_steps = 0;        ///< steps retried in pieces (max_step_halvings)
-  long substeps = 0;           ///< the pieces those steps took
+  /// Corrections of a reused matrix undone because the residual rose (the matrix had gone stale)
+  long undone_corrections = 0;
+  long split_steps = 0;               ///< steps retried in pieces (max_step_halvings)
+  long substeps = 0;                  ///< the pieces those steps took
   double largest_error_estimate = 0;  ///< the largest local error estimate of a step (m, rad)
   /// Pieces kept although their estimate exceeded local_error_tolerance: the smallest ones
   /// (step / 2^max_step_halvings), which are not split further.

@@ -4,7 +4,7 @@
 // bit for bit; a restore into a model that differs fails and says what differs (the first body,
 // joint, force, input or output set whose kind, size or parameters are not the checkpoint's).
 //
-// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 12, signature 0): the
+// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 13, signature 0): the
 // model description (entries of a label, a summary and a hash of the part's parameters), then
 // the Data. A callback law cannot be saved: the checkpoint records that there was one, and the
 // restoring Data must hold a callback law in that place (its own function is kept).
@@ -39,7 +39,7 @@ struct ModelPart {
 
 namespace checkpoint_model_detail {
 
-inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 12, "model checkpoint"};
+inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 13, "model checkpoint"};
 
 template <class T>
 void put_raw(binary::Writer& w, const T& x) {

@@ -303,6 +303,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
       in.have_factorization = false;
       stale_step = false;
       restored = true;
+      ++d.statistics.undone_corrections;
       continue;
     }
     in.dx = -in.r;
@@ -415,6 +416,14 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
       ++it;
       break;
     }
+  }
+  if (restored) {
+    // The loop ended on a correction undone (a budget reached right after it): the state is the
+    // iterate before that correction, but Phi, B and dx are still the undone one's. The
+    // multipliers, the joints' check and the drift test below read them: evaluate the kept
+    // iterate, which takes no correction.
+    evaluate(model, d, /*rates=*/false);
+    in.dx.setZero();
   }
   d.statistics.last_iterations = it;
   d.statistics.last_correction = static_cast<double>(left / in.tol_x);

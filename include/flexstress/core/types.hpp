@@ -99,15 +99,17 @@ using Index = Eigen::Index;
 /// Largest absolute entry, 0 for an empty vector (a model without constraints has nc = 0;
 /// Eigen's maxCoeff() asserts on empty input), NaN if any entry is NaN (Eigen's default
 /// maxCoeff() may skip NaN, and a tolerance test on it would then pass a NaN state).
-/// Two vectorized passes where they can tell: the sum is NaN if an entry is (or if +inf and
-/// -inf both occur); without a NaN entry the default maximum is the exact one. Eigen's
-/// NaN-propagating maximum goes entry by entry (a step makes a handful of these tests).
+/// Two vectorized passes where they can tell: the sum is NaN if an entry is NaN (and also when
+/// +inf and -inf both occur or the partial sums overflow: then the slow path answers); without
+/// a NaN entry the default maximum is the exact one. Eigen's NaN-propagating maximum goes entry
+/// by entry (a step makes a handful of these tests). Eigen's isnan, which holds under
+/// -ffinite-math-only too, where sum != sum may be folded to false.
 template <class Derived>
 typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& v) {
   using Scalar = typename Derived::Scalar;
   if (v.size() == 0) return Scalar(0);
   const Scalar sum = v.sum();
-  if (!(sum != sum)) return v.cwiseAbs().maxCoeff();
+  if (!(Eigen::numext::isnan)(sum)) return v.cwiseAbs().maxCoeff();
   return v.cwiseAbs().template maxCoeff<Eigen::PropagateNaN>();
 }
 

@@ -151,7 +151,8 @@ struct ImplicitSettings {
   /// Evaluate the constraints once more at the accepted state, so that workspace() (Phi, B,
   /// Phi_t, conv) describes the state a step returns and its violation check reads the final
   /// positions. Off, the workspace keeps the last Newton iterate's evaluation (one correction
-  /// earlier, without rates) and the check reads that iterate's Phi; the motion is the same
+  /// earlier, without rates; the kept iterate's own when the step ended on an undone correction)
+  /// and the check reads that iterate's Phi; the motion is the same
   /// to the bit and a step saves one constraint evaluation (8 % of the crane's step).
   /// Projections and stateful force elements need the evaluation and make it regardless.
   bool refresh_workspace = true;

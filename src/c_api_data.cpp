@@ -362,6 +362,8 @@ int fs_statistics_get(const fs_data* d, fs_statistics* out) {
   out->last_iterations = s.last_iterations;
   out->last_correction = s.last_correction;
   out->stalled_steps = s.stalled_steps;
+  out->undone_corrections = s.undone_corrections;
+  out->last_factorizations = s.last_factorizations;
   return FS_OK;
 }
 

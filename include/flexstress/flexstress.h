@@ -123,7 +123,7 @@ fs_motion_law fs_law_input(int input);
 /* The library's version; FLEXSTRESS_VERSION (flexstress/version.hpp) is the header's. Structures
  * such as fs_settings may grow between minor versions: a program built against another
  * version's header must be rebuilt (check fs_version_number() == FLEXSTRESS_VERSION). */
-const char* fs_version(void); /* "0.2.0" */
+const char* fs_version(void); /* "0.3.0" */
 int fs_version_number(void);  /* major * 10000 + minor * 100 + patch */
 /* The message of this thread's last failing call; "" if none. Valid until its next call. */
 const char* fs_last_error(void);
@@ -360,6 +360,10 @@ typedef struct fs_statistics {
   int last_iterations;
   double last_correction; /* the last step's final correction over its tolerance (<= 1: met) */
   long long stalled_steps; /* of over_budget, kept with Newton stalled (keep_stalled_steps) */
+  /* Corrections undone because the residual rose (the reused matrix had gone stale); a step
+   * whose budget ends on one keeps the state before it (0.3) */
+  long long undone_corrections;
+  int last_factorizations; /* factorizations of the last step (0.3) */
 } fs_statistics;
 int fs_statistics_get(const fs_data* d, fs_statistics* out);
 

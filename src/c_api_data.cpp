@@ -404,7 +404,7 @@ double fs_output_value(const fs_data* d, int output) {
   return fsx::output_value(d->data, fsx::OutputId{output});
 }
 
-double fs_meter_damage(fs_data* d, int meter) {
+double fs_meter_damage(const fs_data* d, int meter) {
   if (!d) return guarded("fs_meter_damage", [] { return null_argument("fs_meter_damage"); }), kNaN;
   if (!in_range(meter, d->model->meters().size()))
     return report_bad_handle("fs_meter_damage", "meter", meter), kNaN;

@@ -169,7 +169,8 @@ inline fsx::Result<fsx::MotionLaw<double>> to_law(const fs_motion_law& l) {
   switch (l.kind) {
     case FS_LAW_POLYNOMIAL:
       return Law::constant_acceleration(l.coefficients[0], l.coefficients[1], l.coefficients[2]);
-    case FS_LAW_TABLE: {
+    case FS_LAW_TABLE:
+    case FS_LAW_REST_TO_REST: {
       if (l.table == nullptr || l.table_rows < 0)
         return fsx::make_error(fsx::ErrorCode::invalid_argument,
                                "table law: null rows or a negative row count");
@@ -178,7 +179,10 @@ inline fsx::Result<fsx::MotionLaw<double>> to_law(const fs_motion_law& l) {
         t[r] = l.table[2 * r];
         s[r] = l.table[2 * r + 1];
       }
-      auto table = fsx::TableLaw<double>::create(t, s);
+      auto table = fsx::TableLaw<double>::create(t, s,
+                                                 l.kind == FS_LAW_TABLE
+                                                     ? fsx::TableInterpolation::spline
+                                                     : fsx::TableInterpolation::rest_to_rest);
       if (!table) return table.error();
       return Law::from_table(std::move(*table));
     }

@@ -64,6 +64,9 @@ fs_motion_law fs_law_table(const double* rows, int num_rows) {
 fs_motion_law fs_law_callback(fs_motion_callback callback, void* user) {
   return fs_motion_law{FS_LAW_CALLBACK, {0, 0, 0}, nullptr, 0, callback, user, -1};
 }
+fs_motion_law fs_law_rest_to_rest(const double* rows, int num_rows) {
+  return fs_motion_law{FS_LAW_REST_TO_REST, {0, 0, 0}, rows, num_rows, nullptr, nullptr, -1};
+}
 fs_motion_law fs_law_input(int input) {
   return fs_motion_law{FS_LAW_INPUT, {0, 0, 0}, nullptr, 0, nullptr, nullptr, input};
 }

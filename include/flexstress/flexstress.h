@@ -96,7 +96,8 @@ typedef enum fs_law_kind {
   FS_LAW_POLYNOMIAL = 0, /* s = c[0] + c[1] t + c[2] t^2 / 2 */
   FS_LAW_TABLE = 1,      /* clamped cubic spline through rows (t, s), t increasing */
   FS_LAW_CALLBACK = 2,
-  FS_LAW_INPUT = 3 /* set by fs_set_input before each step, for the step's end (t + step) */
+  FS_LAW_INPUT = 3, /* set by fs_set_input before each step, for the step's end (t + step) */
+  FS_LAW_REST_TO_REST = 4 /* rows (t, s): stops at every row, the quintic between two (0.3) */
 } fs_law_kind;
 
 /* A motion law; make one with the fs_law_* functions. Tables are copied when the law is used
@@ -116,6 +117,10 @@ fs_motion_law fs_law_polynomial(double s0, double v, double a);
  * two rows (t0, s0), (t1, s1) make the smooth step s0 + (s1 - s0)(3u^2 - 2u^3),
  * u = (t - t0) / (t1 - t0). */
 fs_motion_law fs_law_table(const double* rows, int num_rows);
+/* Point to point through (t, s) rows: the motion stops at every row and between two follows
+ * s_i + (s_i+1 - s_i)(10u^3 - 15u^4 + 6u^5), whose rate and acceleration vanish at both rows (no
+ * jump in acceleration at a start or stop, unlike the spline's; no overshoot between rows). */
+fs_motion_law fs_law_rest_to_rest(const double* rows, int num_rows);
 fs_motion_law fs_law_callback(fs_motion_callback callback, void* user);
 fs_motion_law fs_law_input(int input);
 
@@ -125,7 +130,9 @@ fs_motion_law fs_law_input(int input);
  * version's header must be rebuilt (check fs_version_number() == FLEXSTRESS_VERSION). */
 const char* fs_version(void); /* "0.3.0" */
 int fs_version_number(void);  /* major * 10000 + minor * 100 + patch */
-/* The message of this thread's last failing call; "" if none. Valid until its next call. */
+/* The message of this thread's last failing call, or "" if none failed (a successful call
+ * leaves it as it was). The text is valid until the next fs_ call of this thread: copy it before
+ * calling another, also within one expression (C does not order a call's arguments). */
 const char* fs_last_error(void);
 const char* fs_status_string(int status);
 const char* fs_step_status_string(int step_status);
@@ -134,8 +141,11 @@ const char* fs_step_status_string(int step_status);
 fs_model_builder* fs_builder_create(void); /* NULL only if out of memory */
 void fs_builder_destroy(fs_model_builder* b);
 
-/* Returns the handles (>= 0) or FS_INVALID_HANDLE for a null builder or name. Other mistakes
- * still return a handle and are reported by fs_builder_finalize. */
+/* Return the handle (>= 0), or FS_INVALID_HANDLE when the call's own arguments are wrong (a
+ * null builder or name, an unknown kind, a bad law, a node the modal body file lacks; what
+ * fs_last_error then says). Mistakes only the whole model shows (a marker on a node its body
+ * lacks, a joint between two markers of one body, a handle that is not the model's) still
+ * return a handle. Either way fs_builder_finalize fails with the first mistake, naming it. */
 int fs_builder_add_rigid_body(fs_model_builder* b, const char* name, double mass,
                               const double center_of_mass[3], const double inertia_about_com[9]);
 /* A flexible body from a modal body file (flexstress/reduction/modal_body_io.hpp), keeping its
@@ -143,6 +153,7 @@ int fs_builder_add_rigid_body(fs_model_builder* b, const char* name, double mass
  * read gives FS_INVALID_HANDLE, and finalize then fails with the file's error. */
 int fs_builder_add_flexible_body(fs_model_builder* b, const char* name, const char* path,
                                  int modes);
+
 int fs_builder_set_damping_ratio(fs_model_builder* b, int body, double zeta);
 /* Geometric stiffening of a flexible body by its own inertial and gravity loads (what a
  * fast-spinning blade needs: without it, a blade spinning faster than its lowest in-plane
@@ -192,7 +203,7 @@ long fs_builder_nearest_node(const fs_model_builder* b, int body, const double p
  * section (m, along its local y and z axes) at xi (0 at node_a, 1 at node_b) of the
  * Euler-Bernoulli beam between two nodes of the body's modal body file, E (u' - y v'' - z w'')
  * from their mode shapes (displacements and rotations). orientation: the section's local y axis
- * in the body frame (NULL: global y, or z for a beam along y). node_a and node_b must be the
+ * in the body frame (NULL: the body frame's y, or its z for a beam along y). node_a and node_b must be the
  * two nodes of one beam element: the file does not record elements, and between other nodes the
  * result is the stress of a single cubic through them, not the beam's. Errors name the node (one
  * the file does not have, or without rotations) or the value (xi outside [0, 1], E not
@@ -262,7 +273,8 @@ const char* fs_data_error(const fs_data* d);
 int fs_initialize(fs_data* d);
 /* Moves the data to static equilibrium (velocities zero) at its time. */
 int fs_solve_static_equilibrium(fs_data* d);
-/* One step; returns an fs_step_status. Allocates nothing. */
+/* One step; returns an fs_step_status. Allocates nothing. Initializes the data first if it
+ * was not (or a runtime change asks for it), as fs_initialize would. */
 int fs_step(fs_data* d);
 int fs_set_step_size(fs_data* d, double step);
 
@@ -375,7 +387,7 @@ int fs_modal_coordinates(const fs_data* d, int body, double* p, int capacity, in
 int fs_evaluate_outputs(fs_data* d);
 double fs_output_value(const fs_data* d, int output); /* NaN for a bad handle */
 /* Damage so far of a meter, its open cycles closed as a repeating history. NaN if bad. */
-double fs_meter_damage(fs_data* d, int meter);
+double fs_meter_damage(const fs_data* d, int meter);
 /* Samples a meter refused so far (outside its class window, or not finite), which its damage
  * leaves out: above zero, the window is too narrow for the run. -1 if bad. */
 long long fs_meter_refused_samples(const fs_data* d, int meter);

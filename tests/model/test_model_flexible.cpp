@@ -214,6 +214,9 @@ TEST_CASE("runtime model: a meter counts the samples outside its window; a check
   }
   CHECK(meter_refused_samples(resumed, narrow) == meter_refused_samples(d, narrow));
   CHECK(meter_damage(resumed, wide) == meter_damage(d, wide));
+  // A read-out of a Data seen as const (a viewer thread's copy, a report): the same figure.
+  const Data<double>& view = d;
+  CHECK(meter_damage(view, wide) == meter_damage(d, wide));
 }
 
 TEST_CASE("runtime model: initialize turns a flexible body to meet a driver's law, not bends it") {

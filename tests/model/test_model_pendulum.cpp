@@ -275,6 +275,15 @@ TEST_CASE("runtime model: setup errors name the part") {
           const BodyId a = b.add_rigid_body("arm", 1.0, Vector3d::Zero(), Matrix3d::Identity());
           b.add_marker("on a node", a, 3);
         }).find("marker 'on a node'") != std::string::npos);
+  // A handle from elsewhere (another model's, or a number): which side, which handle.
+  CHECK(finalize_error([](ModelBuilder<double>& b) {
+          const BodyId a = b.add_rigid_body("arm", 1.0, Vector3d::Zero(), Matrix3d::Identity());
+          const MarkerId g = b.add_marker("g", b.ground(), -1);
+          b.add_marker("m", a, -1);
+          b.add_joint("hinge", JointKind::revolute, g, MarkerId{42});
+        }) ==
+        "invalid argument: joint 'hinge': its marker j (handle 42) is not one of this "
+        "model's 2 markers");
 }
 
 }  // namespace test_model_pendulum

@@ -67,7 +67,7 @@ class StreamingDamage {
 
   /// Closed damage plus the damage of the residue closed as `closure` (does not change the
   /// counter; costs O(residue), never allocates).
-  Scalar damage(CycleClosure closure) {
+  Scalar damage(CycleClosure closure) const {
     KahanSum<Scalar> total = closed_;
     auto add = [this, &total](const Cycle<Scalar>& c) { total.add(model_.damage(c)); };
     if (closure == CycleClosure::repeating) {

@@ -97,8 +97,9 @@ class StreamingRainflow {
   /// the closing counts to sink: full cycles the last (pending) reversal closes, then each
   /// residue range as a half cycle (ASTM E1049-85 section 5.4.4 step 6). Never allocates.
   template <class Sink>
-  void visit_half_cycle_closure(Sink&& sink) {
-    int* s = scratch_.data();
+  void visit_half_cycle_closure(Sink&& sink) const {
+    std::array<int, residue_capacity> stack;  // on the stack: a const read, no member scratch
+    int* s = stack.data();
     int n = load_final_residue(s, sink);
     for (int i = 0; i + 1 < n; ++i)
       sink(Cycle<Scalar>{grid_.center(s[i]), grid_.center(s[i + 1]), Scalar(0.5)});
@@ -109,11 +110,13 @@ class StreamingRainflow {
   /// every range of R ends up in a full cycle. Sends those cycles to sink. Together with the
   /// cycles already closed, these are the cycles of one work cycle. Never allocates.
   template <class Sink>
-  void visit_repeating_closure(Sink&& sink) {
-    int* s = scratch_.data();
+  void visit_repeating_closure(Sink&& sink) const {
+    // The closure stack and a second copy of R, kept apart from it (the stack overwrites its own
+    // entries); on the stack, so that a const counter can be read.
+    std::array<int, 2 * residue_capacity> scratch;
+    int* s = scratch.data();
     int n = load_final_residue(s, sink);
-    // Second copy of R, kept apart from the stack (which overwrites its own entries).
-    int* copy = scratch_.data() + residue_capacity;
+    int* copy = scratch.data() + residue_capacity;
     for (int i = 0; i < n; ++i) copy[i] = s[i];
     const int m = n;
     auto full = [this, &sink](int a, int b) {
@@ -254,7 +257,7 @@ class StreamingRainflow {
   /// Copies the residue into s, adds the pending reversal (sending the cycles it closes to
   /// sink as full cycles) and returns the length of the final residue.
   template <class Sink>
-  int load_final_residue(int* s, Sink& sink) {
+  int load_final_residue(int* s, Sink& sink) const {
     int n = size_;
     for (int i = 0; i < n; ++i) s[i] = residue_[static_cast<std::size_t>(i)];
     if (filter_.has_pending()) {
@@ -269,7 +272,6 @@ class StreamingRainflow {
   ReversalFilter<int> filter_;
   std::array<int, residue_capacity> residue_{};
   int size_ = 0;
-  std::array<int, 2 * residue_capacity> scratch_{};  // closure stack + copy of the residue
   std::uint64_t samples_ = 0;
   std::uint64_t closed_cycles_ = 0;
 };

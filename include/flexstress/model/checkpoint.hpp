@@ -4,7 +4,7 @@
 // bit for bit; a restore into a model that differs fails and says what differs (the first body,
 // joint, force, input or output set whose kind, size or parameters are not the checkpoint's).
 //
-// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 13, signature 0): the
+// Format (little-endian, core/binary_io.hpp envelope "FLXMODL1", version 14, signature 0): the
 // model description (entries of a label, a summary and a hash of the part's parameters), then
 // the Data. A callback law cannot be saved: the checkpoint records that there was one, and the
 // restoring Data must hold a callback law in that place (its own function is kept).
@@ -39,7 +39,7 @@ struct ModelPart {
 
 namespace checkpoint_model_detail {
 
-inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 13, "model checkpoint"};
+inline constexpr binary::Envelope kEnvelope{"FLXMODL1", 14, "model checkpoint"};
 
 template <class T>
 void put_raw(binary::Writer& w, const T& x) {
@@ -207,6 +207,7 @@ Result<std::vector<unsigned char>> save_checkpoint(const Model<Scalar>& m, const
     w.put(static_cast<std::uint8_t>(law.kind));
     put_raw(w, law.polynomial);
     w.put(static_cast<std::int32_t>(law.input.index));
+    w.put(static_cast<std::uint8_t>(law.table.interpolation()));
     const auto& t = law.table.times();
     const auto& s = law.table.values();
     w.put(static_cast<std::uint64_t>(t.size()));
@@ -310,12 +311,12 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
   }
   for (std::size_t k = 0; ok && k < next.laws.size(); ++k) {
     auto& law = next.laws[k];
-    std::uint8_t kind = 0;
+    std::uint8_t kind = 0, interpolation = 0;
     std::int32_t input = -1;
     std::uint64_t rows = 0;
     PolynomialLaw<Scalar> polynomial;
-    ok = r.get(kind) && get_raw(r, polynomial) && r.get(input) && r.get(rows) &&
-         rows <= r.remaining() / (2 * sizeof(double));
+    ok = r.get(kind) && get_raw(r, polynomial) && r.get(input) && r.get(interpolation) &&
+         r.get(rows) && rows <= r.remaining() / (2 * sizeof(double));
     std::vector<double> t(ok ? rows : 0), s(ok ? rows : 0);
     for (std::size_t i = 0; ok && i < t.size(); ++i) ok = r.get(t[i]) && r.get(s[i]);
     if (!ok) break;
@@ -332,7 +333,9 @@ Status restore_checkpoint(const Model<Scalar>& m, Data<Scalar>& d, const unsigne
     restored.polynomial = polynomial;
     restored.input = InputId{input};
     if (saved == MotionLawKind::table) {
-      auto table = TableLaw<Scalar>::create(t, s);
+      if (interpolation > static_cast<std::uint8_t>(TableInterpolation::rest_to_rest))
+        return bad("law ", k, ": unknown table interpolation ", int(interpolation));
+      auto table = TableLaw<Scalar>::create(t, s, static_cast<TableInterpolation>(interpolation));
       if (!table) return bad("law ", k, ": ", table.error().message);
       restored.table = std::move(*table);
     }

@@ -85,7 +85,7 @@
   D Status set_law<S>(const Model<S>&, Data<S>&, JointId, MotionLaw<S>);                          \
   D Eigen::Matrix<S, 12, 1> body_inertia_coordinates<S>(const Model<S>&, const Data<S>&, int);    \
   D StepStatus evaluate_outputs<S>(const Model<S>&, Data<S>&, bool);                              \
-  D S meter_damage<S>(Data<S>&, MeterId, fatigue::CycleClosure);                                  \
+  D S meter_damage<S>(const Data<S>&, MeterId, fatigue::CycleClosure);                            \
   D std::int64_t meter_refused_samples<S>(const Data<S>&, MeterId);                               \
   D std::vector<ModelPart> describe_model<S>(const Model<S>&);                                    \
   D Result<std::vector<unsigned char>> save_checkpoint<S>(const Model<S>&, const Data<S>&);       \

@@ -392,8 +392,10 @@ class ModelBuilder {
     for (const auto& src : joints_) {
       typename ModelType::Joint j = src;
       if (!marker_ok(j.marker_i) || !marker_ok(j.marker_j))
-        return make_error(ErrorCode::invalid_argument, "joint '", j.name,
-                          "': a marker handle is not of this model");
+        return make_error(ErrorCode::invalid_argument, "joint '", j.name, "': its marker ",
+                          marker_ok(j.marker_i) ? "j" : "i", " (handle ",
+                          marker_ok(j.marker_i) ? j.marker_j : j.marker_i,
+                          ") is not one of this model's ", markers_.size(), " markers");
       j.body_i = markers_[static_cast<std::size_t>(j.marker_i)].body;
       j.body_j = markers_[static_cast<std::size_t>(j.marker_j)].body;
       if (j.body_i == j.body_j)
@@ -449,8 +451,10 @@ class ModelBuilder {
         continue;
       }
       if (!marker_ok(f.marker_i) || !marker_ok(f.marker_j))
-        return make_error(ErrorCode::invalid_argument, "force '", f.name,
-                          "': a marker handle is not of this model");
+        return make_error(ErrorCode::invalid_argument, "force '", f.name, "': its marker ",
+                          marker_ok(f.marker_i) ? "j" : "i", " (handle ",
+                          marker_ok(f.marker_i) ? f.marker_j : f.marker_i,
+                          ") is not one of this model's ", markers_.size(), " markers");
       f.body_i = markers_[static_cast<std::size_t>(f.marker_i)].body;
       f.body_j = markers_[static_cast<std::size_t>(f.marker_j)].body;
       if (f.kind == ForceKind::hydraulic_cylinder)

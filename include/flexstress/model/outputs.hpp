@@ -81,7 +81,7 @@ Scalar output_value(const Data<Scalar>& d, OutputId id) {
 
 /// A meter's damage so far, its residue closed as `closure`.
 template <class Scalar>
-Scalar meter_damage(Data<Scalar>& d, MeterId id,
+Scalar meter_damage(const Data<Scalar>& d, MeterId id,
                     fatigue::CycleClosure closure = fatigue::CycleClosure::repeating) {
   return d.meters[static_cast<std::size_t>(id.index)].damage(closure);
 }

@@ -275,6 +275,14 @@ Scalar driver_effort(const Model<Scalar>& m, const Data<Scalar>& d, JointId id) 
   return is_driver(j.kind) ? -d.lambda(j.row) : Scalar(0);
 }
 
+/// What a driver prescribes at d.t: its current law's value, rate and acceleration (an input
+/// law's as interpolated within the step). Zero for a joint that is not a driver.
+template <class Scalar>
+MotionValue<Scalar> driver_motion(const Model<Scalar>& m, const Data<Scalar>& d, JointId id) {
+  const auto& j = m.joint(id);
+  return j.law >= 0 ? law_value(d, j.law, d.t) : MotionValue<Scalar>();
+}
+
 /// A joint's own coordinate and its rate at the state, from its markers as they are.
 template <class Scalar>
 struct JointCoordinate {

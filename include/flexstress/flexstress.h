@@ -154,6 +154,29 @@ int fs_builder_add_rigid_body(fs_model_builder* b, const char* name, double mass
 int fs_builder_add_flexible_body(fs_model_builder* b, const char* name, const char* path,
                                  int modes);
 
+/* A straight uniform beam as a modal body file (0.3): along the body's x from 0 to length, in
+ * `elements` equal Euler-Bernoulli elements, nodes added at the interface positions (where
+ * joints attach; fs_builder_nearest_node finds a node by position), reduced by Craig-Bampton
+ * with six-DOF interface nodes there and fixed_interface_modes fixed-interface modes:
+ * 6 (interface_count - 1) + fixed_interface_modes modes in all. Keep all of them in
+ * fs_builder_add_flexible_body (docs/reduction.md, "Keeping fewer modes than the basis"). */
+typedef struct fs_beam_body {
+  double length; /* m */
+  int elements;
+  double youngs_modulus, poissons_ratio, density; /* Pa, -, kg/m^3 */
+  /* The section: m^2, and m^4 about its local y and z axes (iz resists bending in the x-y
+   * plane), St. Venant torsion constant (m^4). */
+  double area, iy, iz, torsion_constant;
+  double orientation[3]; /* the section's local y in the body frame; zeros: y (z for a beam
+                          * along y) */
+  const double* interface_at; /* distances from x = 0 (m), interface_count of them */
+  int interface_count;
+  int fixed_interface_modes;
+  double damping_ratio; /* modal damping of every mode */
+} fs_beam_body;
+/* Reduces the beam and saves it at path. Errors name the field (a length, a section property,
+ * an interface position off the beam) or the file. */
+int fs_save_beam_modal_body(const fs_beam_body* beam, const char* path);
 int fs_builder_set_damping_ratio(fs_model_builder* b, int body, double zeta);
 /* Geometric stiffening of a flexible body by its own inertial and gravity loads (what a
  * fast-spinning blade needs: without it, a blade spinning faster than its lowest in-plane

@@ -22,14 +22,19 @@ std::string text(const Parts&... parts) {
   return out.str();
 }
 
+// More elements than a beam body needs by far (the file holds every node's mode shapes).
+constexpr int kMaxElements = 100000;
+
 // The first thing wrong with a beam's description, or an empty string.
 std::string beam_problem(const fs_beam_body& beam) {
   const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
   if (!positive(beam.length)) return text("length ", beam.length, " must be positive");
-  if (beam.elements < 1) return text("elements ", beam.elements, " must be at least 1");
-  if (!std::isfinite(beam.orientation[0]) || !std::isfinite(beam.orientation[1]) ||
-      !std::isfinite(beam.orientation[2]))
-    return "the orientation is not finite";
+  if (beam.elements < 1 || beam.elements > kMaxElements)
+    return text("elements ", beam.elements, " must be from 1 to ", kMaxElements);
+  const fsx::Vector3d y(beam.orientation[0], beam.orientation[1], beam.orientation[2]);
+  if (!y.allFinite()) return "the orientation is not finite";
+  if (!y.isZero(0.0) && y.tail<2>().norm() <= 1e-9 * y.norm())
+    return "the orientation (the section's y) lies along the beam's x";
   if (beam.interface_count < 1 || beam.interface_at == nullptr)
     return "it needs at least one interface position (interface_at, interface_count)";
   for (int k = 0; k < beam.interface_count; ++k) {
@@ -40,8 +45,8 @@ std::string beam_problem(const fs_beam_body& beam) {
   }
   if (beam.fixed_interface_modes < 0)
     return text("fixed_interface_modes ", beam.fixed_interface_modes, " must not be negative");
-  if (!std::isfinite(beam.damping_ratio) || beam.damping_ratio < 0.0)
-    return text("damping_ratio ", beam.damping_ratio, " must be 0 or positive");
+  if (!std::isfinite(beam.damping_ratio) || beam.damping_ratio < 0.0 || beam.damping_ratio >= 1.0)
+    return text("damping_ratio ", beam.damping_ratio, " must be in [0, 1)");
   return std::string();
 }
 
@@ -69,6 +74,9 @@ int fs_save_beam_modal_body(const fs_beam_body* beam, const char* path) {
     spec.end = fsx::Vector3d(beam->length, 0, 0);
     spec.num_elements = beam->elements;
     spec.extra_positions.assign(beam->interface_at, beam->interface_at + beam->interface_count);
+    // A position within a thousandth of an element of a node is that node: a sliver of an
+    // element there would be about 1e9 times stiffer in bending than its neighbours.
+    spec.merge_tolerance = 1e-3 / beam->elements;
     spec.material = mesh.add_material(material);
     spec.section = mesh.add_section(section);
     spec.orientation = vec3(beam->orientation);

@@ -15,6 +15,14 @@ using namespace flexstress_c_api;
 
 namespace {
 
+// A builder call given a null pointer: the call fails (FS_ERROR_NULL in fs_last_error's text),
+// and, with a builder, so does finalize, as for any other part left out of the model.
+int null_in_builder(fs_model_builder* b, const char* where) {
+  if (!b) return null_argument(where), FS_INVALID_HANDLE;
+  return record(b, fsx::make_error(fsx::ErrorCode::invalid_argument, "a required pointer is null"),
+                where);
+}
+
 // Damage meters (fs_builder_add_damage_meter*).
 
 fsx::Result<fsx::fatigue::SnCurve<double>> sn_curve(int curve, double category) {
@@ -120,8 +128,7 @@ void fs_builder_destroy(fs_model_builder* b) {
 int fs_builder_add_rigid_body(fs_model_builder* b, const char* name, double mass,
                               const double com[3], const double inertia[9]) {
   return guarded_handle("fs_builder_add_rigid_body", [&] {
-    if (!b || !name || !com || !inertia)
-      return null_argument("fs_builder_add_rigid_body"), FS_INVALID_HANDLE;
+    if (!b || !name || !com || !inertia) return null_in_builder(b, "fs_builder_add_rigid_body");
     const Eigen::Map<const fsx::Mat3<double>> j(inertia);
     return b->builder.add_rigid_body(name, mass, vec3(com), j).index;
   });
@@ -130,8 +137,7 @@ int fs_builder_add_rigid_body(fs_model_builder* b, const char* name, double mass
 int fs_builder_add_flexible_body(fs_model_builder* b, const char* name, const char* path,
                                  int modes) {
   return guarded_handle("fs_builder_add_flexible_body", [&] {
-    if (!b || !name || !path)
-      return null_argument("fs_builder_add_flexible_body"), FS_INVALID_HANDLE;
+    if (!b || !name || !path) return null_in_builder(b, "fs_builder_add_flexible_body");
     auto data = fsx::reduction::load_modal_body(path);
     if (!data) return record(b, data.error(), std::string("body '") + name + "'");
     const int body = b->builder.add_flexible_body(name, *data, modes).index;
@@ -185,7 +191,7 @@ int fs_builder_set_initial_pose(fs_model_builder* b, int body, const double posi
 int fs_builder_add_marker(fs_model_builder* b, const char* name, int body, long node,
                           const double offset[3], const double axes[9]) {
   return guarded_handle("fs_builder_add_marker", [&] {
-    if (!b || !name) return null_argument("fs_builder_add_marker"), FS_INVALID_HANDLE;
+    if (!b || !name) return null_in_builder(b, "fs_builder_add_marker");
     const fsx::Vec3<double> o = offset ? vec3(offset) : fsx::Vec3<double>::Zero();
     const fsx::Mat3<double> a = axes ? fsx::Mat3<double>(Eigen::Map<const fsx::Mat3<double>>(axes))
                                      : fsx::Mat3<double>::Identity();
@@ -196,10 +202,11 @@ int fs_builder_add_marker(fs_model_builder* b, const char* name, int body, long 
 
 namespace {
 // FS_INVALID_HANDLE with a message, for a kind the call does not take.
-int bad_kind(const char* where, const char* name, int kind, const char* why) {
-  fail(FS_ERROR_INVALID_ARGUMENT,
-       std::string(where) + ": joint '" + name + "': kind " + std::to_string(kind) + why);
-  return FS_INVALID_HANDLE;
+// A joint kind the call cannot take: the call fails, and so does finalize (the joint is not in
+// the model, and a caller that did not check the handle must not get a model without it).
+int bad_kind(fs_model_builder* b, const char* where, const char* name, int kind, const char* why) {
+  return record(b, fsx::make_error(fsx::ErrorCode::invalid_argument, where, ": kind ", kind, why),
+                std::string("joint '") + name + "'");
 }
 bool joint_kind_ok(int kind) {
   return kind >= FS_JOINT_SPHERICAL && kind <= FS_JOINT_REVOLUTE_DRIVER;
@@ -208,10 +215,10 @@ bool joint_kind_ok(int kind) {
 
 int fs_builder_add_joint(fs_model_builder* b, const char* name, int kind, int i, int j) {
   return guarded_handle("fs_builder_add_joint", [&] {
-    if (!b || !name) return null_argument("fs_builder_add_joint"), FS_INVALID_HANDLE;
-    if (!joint_kind_ok(kind)) return bad_kind("fs_builder_add_joint", name, kind, " is unknown");
+    if (!b || !name) return null_in_builder(b, "fs_builder_add_joint");
+    if (!joint_kind_ok(kind)) return bad_kind(b, "fs_builder_add_joint", name, kind, " is unknown");
     if (kind == FS_JOINT_DISTANCE)
-      return bad_kind("fs_builder_add_joint", name, kind, " needs fs_builder_add_distance");
+      return bad_kind(b, "fs_builder_add_joint", name, kind, " needs fs_builder_add_distance");
     return b->builder
         .add_joint(name, static_cast<fsx::JointKind>(kind), fsx::MarkerId{i}, fsx::MarkerId{j})
         .index;
@@ -220,7 +227,7 @@ int fs_builder_add_joint(fs_model_builder* b, const char* name, int kind, int i,
 
 int fs_builder_add_distance(fs_model_builder* b, const char* name, int i, int j, double length) {
   return guarded_handle("fs_builder_add_distance", [&] {
-    if (!b || !name) return null_argument("fs_builder_add_distance"), FS_INVALID_HANDLE;
+    if (!b || !name) return null_in_builder(b, "fs_builder_add_distance");
     return b->builder.add_distance(name, fsx::MarkerId{i}, fsx::MarkerId{j}, length).index;
   });
 }
@@ -228,8 +235,9 @@ int fs_builder_add_distance(fs_model_builder* b, const char* name, int i, int j,
 int fs_builder_add_driver(fs_model_builder* b, const char* name, int kind, int i, int j,
                           const fs_motion_law* law) {
   return guarded_handle("fs_builder_add_driver", [&] {
-    if (!b || !name || !law) return null_argument("fs_builder_add_driver"), FS_INVALID_HANDLE;
-    if (!joint_kind_ok(kind)) return bad_kind("fs_builder_add_driver", name, kind, " is unknown");
+    if (!b || !name || !law) return null_in_builder(b, "fs_builder_add_driver");
+    if (!joint_kind_ok(kind))
+      return bad_kind(b, "fs_builder_add_driver", name, kind, " is unknown");
     auto l = to_law(*law);
     if (!l) return record(b, l.error(), std::string("joint '") + name + "'");
     return b->builder
@@ -243,7 +251,7 @@ int fs_builder_add_spring_damper(fs_model_builder* b, const char* name, int i, i
                                  double stiffness, double damping, double rest_length,
                                  double preload) {
   return guarded_handle("fs_builder_add_spring_damper", [&] {
-    if (!b || !name) return null_argument("fs_builder_add_spring_damper"), FS_INVALID_HANDLE;
+    if (!b || !name) return null_in_builder(b, "fs_builder_add_spring_damper");
     fsx::SpringDamperParams<double> p;
     p.stiffness = stiffness;
     p.damping = damping;
@@ -256,8 +264,7 @@ int fs_builder_add_spring_damper(fs_model_builder* b, const char* name, int i, i
 int fs_builder_add_point_load(fs_model_builder* b, const char* name, int marker,
                               fs_point_load_callback callback, void* user) {
   return guarded_handle("fs_builder_add_point_load", [&] {
-    if (!b || !name || !callback)
-      return null_argument("fs_builder_add_point_load"), FS_INVALID_HANDLE;
+    if (!b || !name || !callback) return null_in_builder(b, "fs_builder_add_point_load");
     // The C callback has the C++ one's signature.
     return b->builder.add_point_load(name, fsx::MarkerId{marker}, callback, user).index;
   });
@@ -266,8 +273,7 @@ int fs_builder_add_point_load(fs_model_builder* b, const char* name, int marker,
 int fs_builder_add_stress_outputs(fs_model_builder* b, const char* name, int body,
                                   const double* rows, int num_outputs, int num_modes) {
   return guarded_handle("fs_builder_add_stress_outputs", [&] {
-    if (!b || !name || !rows)
-      return null_argument("fs_builder_add_stress_outputs"), FS_INVALID_HANDLE;
+    if (!b || !name || !rows) return null_in_builder(b, "fs_builder_add_stress_outputs");
     if (num_outputs < 1 || num_modes < 0) {
       fail(FS_ERROR_INVALID_ARGUMENT, std::string("fs_builder_add_stress_outputs: outputs '") +
                                           name + "': " + std::to_string(num_outputs) + " x " +
@@ -303,7 +309,7 @@ int fs_builder_add_beam_fibre_stress(fs_model_builder* b, const char* name, int 
                                      long node_b, const double orientation[3],
                                      double youngs_modulus, double xi, double y, double z) {
   return guarded_handle("fs_builder_add_beam_fibre_stress", [&] {
-    if (!b || !name) return null_argument("fs_builder_add_beam_fibre_stress"), FS_INVALID_HANDLE;
+    if (!b || !name) return null_in_builder(b, "fs_builder_add_beam_fibre_stress");
     const std::string part = std::string("output '") + name + "'";
     const auto found = std::find_if(b->flexible_bodies.begin(), b->flexible_bodies.end(),
                                     [&](const auto& f) { return f.body == body; });
@@ -330,7 +336,7 @@ int fs_builder_add_beam_fibre_stress(fs_model_builder* b, const char* name, int 
 int fs_builder_add_damage_meter(fs_model_builder* b, const char* name, int output, double fat,
                                 double lower, double upper, double scale) {
   return guarded_handle("fs_builder_add_damage_meter", [&] {
-    if (!b || !name) return null_argument("fs_builder_add_damage_meter"), FS_INVALID_HANDLE;
+    if (!b || !name) return null_in_builder(b, "fs_builder_add_damage_meter");
     return add_meter(b, name, output, FS_SN_IIW_NORMAL_HAIBACH, fat, lower, upper, scale);
   });
 }
@@ -338,14 +344,14 @@ int fs_builder_add_damage_meter(fs_model_builder* b, const char* name, int outpu
 int fs_builder_add_damage_meter_curve(fs_model_builder* b, const char* name, int output, int curve,
                                       double category, double lower, double upper, double scale) {
   return guarded_handle("fs_builder_add_damage_meter_curve", [&] {
-    if (!b || !name) return null_argument("fs_builder_add_damage_meter_curve"), FS_INVALID_HANDLE;
+    if (!b || !name) return null_in_builder(b, "fs_builder_add_damage_meter_curve");
     return add_meter(b, name, output, curve, category, lower, upper, scale);
   });
 }
 
 int fs_builder_add_input(fs_model_builder* b, const char* name) {
   return guarded_handle("fs_builder_add_input", [&] {
-    if (!b || !name) return null_argument("fs_builder_add_input"), FS_INVALID_HANDLE;
+    if (!b || !name) return null_in_builder(b, "fs_builder_add_input");
     return b->builder.add_input(name).index;
   });
 }

@@ -156,7 +156,8 @@ int fs_builder_add_flexible_body(fs_model_builder* b, const char* name, const ch
 
 /* A straight uniform beam as a modal body file (0.3): along the body's x from 0 to length, in
  * `elements` equal Euler-Bernoulli elements, nodes added at the interface positions (where
- * joints attach; fs_builder_nearest_node finds a node by position), reduced by Craig-Bampton
+ * joints attach, or at the node within a thousandth of an element of one;
+ * fs_builder_nearest_node finds a node by position), reduced by Craig-Bampton
  * with six-DOF interface nodes there and fixed_interface_modes fixed-interface modes:
  * 6 (interface_count - 1) + fixed_interface_modes modes in all. Keep all of them in
  * fs_builder_add_flexible_body (docs/reduction.md, "Keeping fewer modes than the basis"). */
@@ -167,8 +168,7 @@ typedef struct fs_beam_body {
   /* The section: m^2, and m^4 about its local y and z axes (iz resists bending in the x-y
    * plane), St. Venant torsion constant (m^4). */
   double area, iy, iz, torsion_constant;
-  double orientation[3]; /* the section's local y in the body frame; zeros: y (z for a beam
-                          * along y) */
+  double orientation[3]; /* the section's local y in the body frame; zeros: the body's y */
   const double* interface_at; /* distances from x = 0 (m), interface_count of them */
   int interface_count;
   int fixed_interface_modes;

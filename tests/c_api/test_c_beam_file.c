@@ -106,8 +106,33 @@ static void check_errors(const char* path) {
   printf("expected: %s\n", fs_last_error());
   CHECK(strstr(fs_last_error(), "section area") != NULL);
   beam = steel_cantilever(&root_at);
+  beam.orientation[0] = 2.0; /* the section's y along the beam */
+  CHECK(fs_save_beam_modal_body(&beam, path) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_last_error(), "lies along the beam's x") != NULL);
+  beam = steel_cantilever(&root_at);
+  beam.damping_ratio = 1.0;
+  CHECK(fs_save_beam_modal_body(&beam, path) == FS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(fs_last_error(), "damping_ratio 1 must be in [0, 1)") != NULL);
+  beam = steel_cantilever(&root_at);
   CHECK(fs_save_beam_modal_body(&beam, "/nonexistent/dir/beam.fsmodal") == FS_ERROR_IO);
   printf("expected: %s\n", fs_last_error());
+}
+
+/* An interface position a micrometre off a node (0.5 m; elements of 50 mm) is that node: no
+ * sliver of an element, which would be about 1e9 times stiffer in bending than its neighbours. */
+static void check_snapping(const char* path) {
+  const double at[2] = {0.0, 0.500001}, point[3] = {0.500001, 0.0, 0.0};
+  fs_beam_body beam = steel_cantilever(at);
+  fs_model_builder* b;
+  double distance = -1.0;
+  int body;
+  beam.interface_count = 2;
+  CHECK(fs_save_beam_modal_body(&beam, path) == FS_OK);
+  b = fs_builder_create();
+  body = fs_builder_add_flexible_body(b, "cantilever", path, 6 + 6);
+  CHECK(fs_builder_nearest_node(b, body, point, &distance) == 10);
+  CHECK(fabs(distance - 1e-6) < 1e-9);
+  fs_builder_destroy(b);
 }
 
 int main(int argc, char** argv) {
@@ -118,6 +143,7 @@ int main(int argc, char** argv) {
   }
   snprintf(path, sizeof path, "%s/cantilever.fsmodal", argv[1]);
   check_frequencies(path);
+  check_snapping(path);
   check_errors(path);
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   return failures ? 1 : 0;

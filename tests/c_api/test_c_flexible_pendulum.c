@@ -373,19 +373,21 @@ static void check_drivers(void) {
   CHECK(fabs(angle_z(d, crank) - 0.2) < 1e-6);
   /* The same rows point to point: at rest at the row (t = 0.2 s; the spline was turning, so
    * initialize again); half way to the next, 0.25 rad at the quintic's peak rate, 1.875 times
-   * the segment's mean (0.1 rad in 0.1 s); at rest again at t = 0.3 s. The step holds the angle
-   * itself to the law, its rate to O(h^2 s''') (s''' up to 60 * 0.1 / 0.1^3 = 6000 rad/s^3:
-   * 6e-3 rad/s at h = 1 ms), so the rates are checked to 1e-3 rad/s. */
+   * the segment's mean (0.1 rad in 0.1 s), where the spline through the same rows turns at
+   * 1.1 rad/s; at rest again at t = 0.3 s. The step holds the angle to the law; its rate is off
+   * by the order of h^2 s''' (3e-3 rad/s half way, 6e-3 at the row: s''' = 30 and 60 times
+   * 0.1 / 0.1^3), so the rates are checked to 1e-2 rad/s, which still tells the two laws apart
+   * (measured: 2.6e-4 and 5.2e-4 rad/s). */
   law = fs_law_rest_to_rest(table, 4);
   CHECK(fs_set_law(d, drive, &law) == FS_OK);
   CHECK(fs_initialize(d) == FS_OK);
   for (i = 0; i < 50; ++i) CHECK(fs_step(d) == FS_STEP_OK);
   CHECK(fabs(angle_z(d, crank) - 0.25) < 1e-6);
-  CHECK(fs_body_angular_velocity(d, crank, w) == FS_OK && fabs(w[2] - 1.875) < 1e-3);
+  CHECK(fs_body_angular_velocity(d, crank, w) == FS_OK && fabs(w[2] - 1.875) < 1e-2);
   printf("point to point: %.6g rad/s half way (t = %.3f s), ", w[2], fs_time(d));
   for (i = 0; i < 50; ++i) CHECK(fs_step(d) == FS_STEP_OK);
   CHECK(fabs(angle_z(d, crank) - 0.3) < 1e-6);
-  CHECK(fs_body_angular_velocity(d, crank, w) == FS_OK && fabs(w[2]) < 1e-3);
+  CHECK(fs_body_angular_velocity(d, crank, w) == FS_OK && fabs(w[2]) < 1e-2);
   printf("%.3g rad/s at the row (t = %.3f s)\n", w[2], fs_time(d));
   /* An input law: initialize refuses it until the input is set, then assembles the jump. */
   law = fs_law_input(input);
@@ -458,6 +460,12 @@ static void check_errors(const char* modal_file, const reference* r) {
   CHECK(strstr(fs_last_error(), "odd") != NULL);
   CHECK(fs_builder_add_driver(b, "no law", FS_JOINT_REVOLUTE_DRIVER, 0, 1, NULL) ==
         FS_INVALID_HANDLE);
+  CHECK(strstr(fs_last_error(), "fs_builder_add_driver: a required pointer is null") != NULL);
+  /* Neither joint is in the model, so finalize fails too, naming the first: a caller that did
+   * not check the handles must not get a model without them. */
+  CHECK(fs_builder_finalize(b, &m) == FS_ERROR_INVALID_ARGUMENT && m == NULL);
+  CHECK(strstr(fs_builder_error(b), "joint 'odd': fs_builder_add_joint: kind 42 is unknown") !=
+        NULL);
   fs_builder_destroy(b);
 
   /* A driver's table whose time goes backwards: finalize names the joint and the row. A step

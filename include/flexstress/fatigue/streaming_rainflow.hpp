@@ -25,7 +25,8 @@
 //     sample is refused with StepStatus::invalid_input and nothing changes.
 //
 // Cost per sample: one class lookup and one comparison in the common case; a cycle closure
-// touches the top four stack entries. Memory: 6 NClasses ints (residue + closure scratch).
+// touches the top four stack entries. Memory: 2 NClasses ints (the residue); closing the
+// residue takes 4 NClasses ints of stack for the call.
 #pragma once
 
 #include <array>
@@ -49,8 +50,9 @@ template <class Scalar, int NClasses>
 class StreamingRainflow {
   static_assert(NClasses >= 2, "StreamingRainflow needs at least 2 classes");
   static_assert(NClasses <= 4096,
-                "StreamingRainflow: more than 4096 classes makes the counter large (6 ints per "
-                "class); 4096 classes already resolve 1/4096 of the stress window");
+                "StreamingRainflow: more than 4096 classes makes the counter large (2 ints per "
+                "class, 4 more on the stack to close it); 4096 classes already resolve 1/4096 of "
+                "the stress window");
 
  public:
   static constexpr int classes = NClasses;

@@ -50,6 +50,7 @@
 #include "flexstress/reduction/modal_geometric_stiffness.hpp"
 #include "flexstress/reduction/modal_geometric_stiffness_data.hpp"
 #include "flexstress/reduction/modal_geometric_stiffness_io.hpp"
+#include "flexstress/reduction/mode_truncation.hpp"
 #include "flexstress/reduction/orthonormalize.hpp"
 
 #include "flexstress/dynamics/body_model.hpp"

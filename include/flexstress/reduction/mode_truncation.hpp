@@ -1,0 +1,73 @@
+// What keeping fewer modes than a body's data holds costs its static shapes: the static
+// flexibility the kept modes carry at a node's DOF, against all of the data's modes.
+//
+// A load f at DOF i of a body deflects it there by f_ii f in its modal coordinates, with the
+// direct flexibility f_ii = phi_i^T K^-1 phi_i over the modes kept (phi_i: the row of the mode
+// shapes at DOF i, K the modal stiffness; for orthonormal modes the sum of phi_k(i)^2 / omega_k^2).
+// Joints load a body at its interface nodes, and after orthonormalization a Craig-Bampton
+// basis's static constraint modes, which carry that flexibility, are among its highest modes: a
+// body that keeps its lowest modes only can lose most of it, and with it the static shape and
+// stress near the joints (docs/reduction.md, "Keeping fewer modes than the basis").
+#pragma once
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include "flexstress/core/types.hpp"
+#include "flexstress/reduction/modal_body.hpp"
+
+namespace flexstress::reduction {
+
+/// The direct static flexibility of the lowest `modes` modes of `data` at DOF `dof` of `node`
+/// (0 to 2: translation x, y, z in the body frame, m/N; 3 to 5: rotation about x, y, z,
+/// rad/(N m)): phi_i^T K^-1 phi_i with K the kept modes' block of the modal stiffness. 0 for no
+/// modes; NaN for a node or DOF the data does not have, or a modal stiffness that is not
+/// positive definite.
+inline double modal_flexibility(const ModalBodyData& data, Index node, int dof, Index modes) {
+  const Index n = std::min<Index>(std::max<Index>(modes, 0), data.num_modes);
+  if (node < 0 || node >= data.num_nodes() || dof < 0 || dof > 5)
+    return std::numeric_limits<double>::quiet_NaN();
+  if (n == 0) return 0.0;
+  const MatrixXd& shapes = dof < 3 ? data.phi_translation : data.phi_rotation;
+  const VectorXd row = shapes.row(3 * node + dof % 3).head(n).transpose();
+  const Eigen::LLT<MatrixXd> k(data.modal_stiffness.topLeftCorner(n, n));
+  if (k.info() != Eigen::Success) return std::numeric_limits<double>::quiet_NaN();
+  return row.dot(k.solve(row));
+}
+
+/// The share of one interface DOF's flexibility that the lowest `kept` modes carry.
+struct KeptFlexibility {
+  Index node = -1;        ///< the interface node
+  int dof = -1;           ///< 0 to 2 translation, 3 to 5 rotation
+  double fraction = 1.0;  ///< kept flexibility over the whole basis's, at that DOF
+};
+
+/// The share of the flexibility at each interface DOF that the lowest `kept` modes carry, by
+/// node and DOF (DOFs the modes do not move are left out: a clamped interface node of a body
+/// reduced with one interface). A share well below 1 at a DOF a joint loads means the kept
+/// modes cannot take the static shape that load makes. An axial or torsional DOF whose share is
+/// 0 is a body kept rigid along or about its axis, which may be what was meant.
+inline std::vector<KeptFlexibility> kept_interface_flexibility(const ModalBodyData& data,
+                                                               Index kept) {
+  std::vector<KeptFlexibility> out;
+  if (data.num_modes == 0) return out;
+  // A DOF no mode moves beyond round-off of the largest motion of its kind (translation or
+  // rotation) anywhere on the body has no flexibility to keep (its share would be 0 / 0).
+  const double largest[2] = {data.phi_translation.cwiseAbs().maxCoeff(),
+                             data.phi_rotation.cwiseAbs().maxCoeff()};
+  for (const Index node : data.interface_nodes)
+    for (int dof = 0; dof < 6; ++dof) {
+      const MatrixXd& shapes = dof < 3 ? data.phi_translation : data.phi_rotation;
+      if (!(shapes.row(3 * node + dof % 3).cwiseAbs().maxCoeff() > 1e-9 * largest[dof / 3]))
+        continue;
+      const double all = modal_flexibility(data, node, dof, data.num_modes);
+      out.push_back({node, dof, modal_flexibility(data, node, dof, kept) / all});
+    }
+  return out;
+}
+
+}  // namespace flexstress::reduction

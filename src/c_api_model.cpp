@@ -455,5 +455,15 @@ int fs_model_body_modes(const fs_model* m, int body) {
     return bad_handle("fs_model_body_modes", "body", body), -1;
   return model->body(fsx::BodyId{body}).modes;
 }
+int fs_model_warning_count(const fs_model* m) {
+  return size_or(m, [](const fsx::Model<double>& x) { return int(x.warnings().size()); });
+}
+const char* fs_model_warning(const fs_model* m, int index) {
+  const auto* model = model_of(m);
+  if (!model) return null_argument("fs_model_warning"), nullptr;
+  if (!in_range(index, model->warnings().size()))
+    return bad_handle("fs_model_warning", "warning", index), nullptr;
+  return model->warnings()[static_cast<std::size_t>(index)].c_str();
+}
 
 }  // extern "C"

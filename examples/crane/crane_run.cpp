@@ -77,6 +77,8 @@ std::optional<Crane> build_crane(const RunOptions& o) {
     std::fprintf(stderr, "error: %s\n", made.error().what().c_str());
     return std::nullopt;
   }
+  for (const std::string& w : made->model.warnings())
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
   return std::move(*made);
 }
 

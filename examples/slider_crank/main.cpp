@@ -195,6 +195,8 @@ int main(int argc, char** argv) {
   auto built = slider_crank::make_model(spec, *rod, modes, &settings);
   if (!built) return std::cerr << "slider_crank: " << built.error().what() << "\n", 1;
   slider_crank::SliderCrank& s = *built;
+  for (const std::string& w : s.model.warnings())
+    std::cerr << "slider_crank: warning: " << w << "\n";
   Data<double> d(s.model);
   if (Status st = slider_crank::set_start_velocities(spec, *rod, s, d, start == "smooth"); !st)
     return std::cerr << "slider_crank: " << st.error().what() << "\n", 1;

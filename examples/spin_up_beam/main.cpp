@@ -43,6 +43,7 @@ History run(const char* name, bool stiffening, spin_up::Frame frame, const spin_
     std::exit(1);
   }
   const spin_up::SpinUp& s = *built;
+  for (const std::string& w : s.model.warnings()) std::cerr << name << ": warning: " << w << "\n";
   Data<double> d(s.model);
   set_step_size(d, h);
   if (Status st = initialize(s.model, d); !st) {

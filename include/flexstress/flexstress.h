@@ -283,6 +283,11 @@ int fs_model_num_markers(const fs_model* m);
 int fs_model_num_joints(const fs_model* m);
 int fs_model_num_inputs(const fs_model* m);
 int fs_model_body_modes(const fs_model* m, int body);
+/* What finalize found legal but likely wrong (0.4): a sentence each naming the part (a flexible
+ * body keeping too few of its basis's modes to take a joint's static load). The count (-1 for
+ * a null model), and warning `index` (NULL if there is none such), valid while the model is. */
+int fs_model_warning_count(const fs_model* m);
+const char* fs_model_warning(const fs_model* m, int index);
 
 /* ---- data -------------------------------------------------------------------------------- */
 fs_data* fs_data_create(const fs_model* m); /* at the initial poses, at rest; NULL on failure */

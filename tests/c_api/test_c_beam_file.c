@@ -64,6 +64,7 @@ static void check_frequencies(const char* path) {
     return;
   }
   CHECK(fs_model_body_modes(m, body) == 6);
+  CHECK(fs_model_warning_count(m) == 0);
   d = fs_data_create(m);
   CHECK(fs_linearized_frequencies(d, hz, 16, &count) == FS_OK);
   CHECK(count == 6);
@@ -135,6 +136,33 @@ static void check_snapping(const char* path) {
   fs_builder_destroy(b);
 }
 
+/* Keeping 8 of the 12 modes of a beam with two interface nodes loses flexibility at them (the
+ * static constraint modes are among the highest): finalize succeeds with a warning that names
+ * the body (Model::warnings; tests/model/test_model_warnings.cpp checks what it warns of). */
+static void check_warnings(const char* path) {
+  const int counts[2] = {12, 8};
+  int k;
+  for (k = 0; k < 2; ++k) {
+    fs_model_builder* b = fs_builder_create();
+    fs_model* m = NULL;
+    fs_builder_add_flexible_body(b, "cantilever", path, counts[k]);
+    CHECK(fs_builder_finalize(b, &m) == FS_OK);
+    fs_builder_destroy(b);
+    if (!m) {
+      ++failures;
+      continue;
+    }
+    CHECK(fs_model_warning_count(m) == (k == 0 ? 0 : 1));
+    if (k == 1 && fs_model_warning(m, 0)) {
+      printf("warning: %s\n", fs_model_warning(m, 0));
+      CHECK(strstr(fs_model_warning(m, 0), "body 'cantilever': its lowest 8 of") != NULL);
+    }
+    CHECK(fs_model_warning(m, fs_model_warning_count(m)) == NULL);
+    fs_model_destroy(m);
+  }
+  CHECK(fs_model_warning_count(NULL) == -1);
+}
+
 int main(int argc, char** argv) {
   char path[4096];
   if (argc != 2 || strlen(argv[1]) > sizeof path - 32) {
@@ -144,6 +172,7 @@ int main(int argc, char** argv) {
   snprintf(path, sizeof path, "%s/cantilever.fsmodal", argv[1]);
   check_frequencies(path);
   check_snapping(path);
+  check_warnings(path);
   check_errors(path);
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   return failures ? 1 : 0;

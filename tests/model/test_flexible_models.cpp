@@ -337,16 +337,7 @@ TEST_CASE("static equilibrium of a clamped flexible cantilever matches the FE st
   const Index tip = beam.line.nodes.back();
   const double tip_sim = tip_of(h, d).y();
   // FE: clamped at x = 0, self-weight as consistent nodal loads M g.
-  fe::BoundaryConditions bc;
-  bc.clamp(beam.interface_nodes[0]);
-  auto full = fe::assemble(beam.mesh, bc);
-  REQUIRE(full.ok());
-  auto solver = fe::StaticSolver::factorize(beam.mesh, *full);
-  REQUIRE(solver.ok());
-  VectorXd g = VectorXd::Zero(full->dofs.size());
-  for (Index n = 0; n < beam.mesh.num_nodes(); ++n) g(full->dofs.dof(n, 1)) = -9.81;
-  const VectorXd u = solver->solve(full->mass_all * g);
-  const double tip_fe = u(full->dofs.dof(tip, 1));
+  const double tip_fe = testing::fe_deflection_under_weight(beam, beam.interface_nodes[0], tip);
   // Beam theory for the same load: q L^4 / (8 E I).
   const double q = 7850 * kSection.area * 9.81;
   const double tip_theory = -q * std::pow(kLength, 4) / (8 * 210e9 * kSection.iz);

@@ -6,7 +6,9 @@
 
 #include <doctest/doctest.h>
 
+#include <flexstress/fe/assembly.hpp>
 #include <flexstress/fe/beam_line.hpp>
+#include <flexstress/fe/static_solver.hpp>
 #include <flexstress/reduction/modal_body_data.hpp>
 
 namespace flexstress::testing {
@@ -43,6 +45,20 @@ inline BeamBody make_beam_body(double length, const fe::BeamSection& section, in
   REQUIRE(data.ok());
   b.data = std::move(*data);
   return b;
+}
+
+/// The FE model of `b` (not reduced) clamped at node `clamped`, under its own weight along -y
+/// (gravity 9.81 m/s^2 as consistent nodal loads M g): node `at`'s deflection along y.
+inline double fe_deflection_under_weight(const BeamBody& b, Index clamped, Index at) {
+  fe::BoundaryConditions bc;
+  bc.clamp(clamped);
+  auto full = fe::assemble(b.mesh, bc);
+  REQUIRE(full.ok());
+  auto solver = fe::StaticSolver::factorize(b.mesh, *full);
+  REQUIRE(solver.ok());
+  VectorXd g = VectorXd::Zero(full->dofs.size());
+  for (Index n = 0; n < b.mesh.num_nodes(); ++n) g(full->dofs.dof(n, 1)) = -9.81;
+  return solver->solve(full->mass_all * g)(full->dofs.dof(at, 1));
 }
 
 }  // namespace flexstress::testing

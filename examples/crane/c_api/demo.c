@@ -253,6 +253,8 @@ static fs_model* build_crane(const char* boom_file, const crane_spec* c, const d
 
   if (fs_builder_finalize(b, &model) != FS_OK)
     fprintf(stderr, "error: the crane does not build: %s\n", fs_builder_error(b));
+  for (int i = 0; i < fs_model_warning_count(model); ++i)
+    fprintf(stderr, "warning: %s\n", fs_model_warning(model, i));
   fs_builder_destroy(b); /* the model does not need it */
   return model;
 }

@@ -183,6 +183,9 @@ class Model {
   const Vec3<Scalar>& ground_axis() const { return ground_axis_; }
   bool has_gravity() const { return has_gravity_; }
   bool has_quadratic_velocity() const { return quadratic_velocity_; }
+  /// What finalize found legal but likely wrong, a sentence each naming the part (a flexible
+  /// body keeping too few of its basis's modes to take a joint's static load); empty if none.
+  const std::vector<std::string>& warnings() const { return warnings_; }
   /// The laws drivers start with (a Data copies them and may swap them).
   const std::vector<MotionLaw<Scalar>>& laws() const { return laws_; }
   const ImplicitSettings<Scalar>& settings() const { return settings_; }
@@ -216,6 +219,7 @@ class Model {
   std::vector<JacobianBlock> jacobian_blocks_;
   std::vector<Force> forces_;
   std::vector<std::string> inputs_;
+  std::vector<std::string> warnings_;
   std::vector<OutputSet> output_sets_;
   std::vector<Meter> meters_;
   int num_outputs_ = 0;

@@ -29,6 +29,7 @@
 #include "flexstress/model/body_kernels.hpp"
 #include "flexstress/model/model.hpp"
 #include "flexstress/reduction/modal_body.hpp"
+#include "flexstress/reduction/mode_truncation.hpp"
 
 #ifndef FLEXSTRESS_MODE_COUNTS
 /// Mode counts whose body kernels are compiled with a fixed size (unrolled, vectorized); any
@@ -56,6 +57,9 @@ class ModelBuilder {
   /// ratios (set_damping_ratio changes them).
   BodyId add_flexible_body(const std::string& name, const reduction::ModalBodyData& data,
                            int modes);
+  // Fewer modes than a Craig-Bampton basis holds can lose the static flexibility at the
+  // interface nodes (its constraint modes are among the highest after orthonormalization):
+  // the model's warnings() then name the body, the node and the DOF.
 
   /// Geometric stiffening of a flexible body under its own inertial and gravity loads: K_G
   /// from modal geometric stiffness per unit load case (reduction/modal_geometric_stiffness.hpp;
@@ -323,6 +327,7 @@ class ModelBuilder {
     m.gravity_ = gravity_;
     m.has_gravity_ = has_gravity_;
     m.quadratic_velocity_ = quadratic_velocity_;
+    m.warnings_ = warnings_;
     m.inputs_ = inputs_;
     m.ground_motion_ = ground_motion_;
     m.ground_axis_ = ground_axis_;
@@ -503,6 +508,12 @@ class ModelBuilder {
   void fail(ErrorCode code, const Parts&... parts) {
     if (first_error_.message.empty()) first_error_ = make_error(code, parts...);
   }
+  template <class... Parts>
+  void warn(const Parts&... parts) {
+    std::string text;
+    (detail::append_part(text, parts), ...);
+    warnings_.push_back(std::move(text));
+  }
 
   Pending& body_entry(BodyId b, const char* what) {
     if (b.index < 0 || b.index >= static_cast<int>(bodies_.size())) {
@@ -533,6 +544,7 @@ class ModelBuilder {
   std::vector<typename ModelType::Joint> joints_;
   std::vector<typename ModelType::Force> forces_;
   std::vector<std::string> inputs_;
+  std::vector<std::string> warnings_;
   std::vector<MotionLaw<Scalar>> laws_;
   std::vector<typename ModelType::OutputSet> output_sets_;
   std::vector<typename ModelType::Meter> meters_;
@@ -587,7 +599,16 @@ BodyId ModelBuilder<Scalar>::add_flexible_body(const std::string& name,
     else
       error = b.error();
   }
-  if (!error.message.empty()) fail(error.code, "body '", name, "': ", error.message);
+  if (!error.message.empty())
+    fail(error.code, "body '", name, "': ", error.message);
+  else if (auto least =
+               modes > 0 ? reduction::least_kept_interface_flexibility(data, modes) : std::nullopt)
+    warn("body '", name, "': its lowest ", modes, " of the data's ", data.num_modes,
+         " modes carry ", std::round(1000 * least->fraction) / 10,
+         " % of the static flexibility at interface node ", least->node, ", ",
+         reduction::dof_name(least->dof),
+         ": a joint loading it there cannot take its static shape; choose the count in the "
+         "reduction and keep all its modes");
   return push(std::move(p));
 }
 

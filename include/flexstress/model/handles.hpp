@@ -4,6 +4,8 @@
 // a body is meant.
 #pragma once
 
+#include <cstddef>
+
 namespace flexstress {
 
 template <class Tag>
@@ -43,9 +45,10 @@ using MeterId = Handle<MeterTag>;
 struct OutputRange {
   OutputId first;
   int count = 0;
-  /// Row k's output; outside 0 .. count - 1 an invalid handle, which the builder refuses.
-  constexpr OutputId operator[](int k) const {
-    return k >= 0 && k < count ? OutputId{first.index + k} : OutputId{};
+  /// Row k's output; outside 0 .. count - 1 an invalid handle, which the builder refuses. Takes
+  /// the library's wide index (stress::StressOutputs::add_hot_spot's row) without narrowing.
+  constexpr OutputId operator[](std::ptrdiff_t k) const {
+    return k >= 0 && k < count ? OutputId{first.index + static_cast<int>(k)} : OutputId{};
   }
   constexpr int size() const { return count; }
   constexpr operator OutputId() const { return first; }  // NOLINT: a set is its first output

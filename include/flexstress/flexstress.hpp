@@ -72,6 +72,7 @@
 #include "flexstress/stress/stress_outputs.hpp"
 #include "flexstress/stress/sub_model.hpp"
 #include "flexstress/stress/sub_model_inertia.hpp"
+#include "flexstress/stress/weld_toe_hot_spot.hpp"
 
 #include "flexstress/fatigue/class_grid.hpp"
 #include "flexstress/fatigue/cycle.hpp"

@@ -19,6 +19,7 @@
 #include <flexstress/stress/section_force_modes.hpp>
 #include <flexstress/stress/stress_outputs.hpp>
 #include <flexstress/stress/sub_model.hpp>
+#include <flexstress/stress/weld_toe_hot_spot.hpp>
 
 #include "support/beam_fixtures.hpp"
 
@@ -498,6 +499,34 @@ TEST_CASE("section-force modes of a reduced cantilever give the section's shear 
   auto not_its_node = section_force_modes(beam.mesh, beam.data, 0, tip);
   REQUIRE_FALSE(not_its_node.ok());
   CHECK(not_its_node.error().message.find("is not a node of beam element 0") != std::string::npos);
+}
+
+TEST_CASE("under a uniform moment the rib's two toes read one hot spot, each away from its weld") {
+  // The rib and its welds are symmetric about the rib's mid-plane (x = 0.65, halfway between the
+  // segment's ends), and pure bending by opposite end rotations makes the moment uniform: the
+  // two toes see the same stress field mirrored, and the generator mirrors its mesh too.
+  // Read towards the weld, the -x toe's points fall under the weld's foot (measured: 0.53 of
+  // the toe's hot spot).
+  const auto r = rhs(0.6);
+  const SubModel s = tie(r);
+  StressOutputs out;
+  const auto plus = out.add_hot_spot(weld_toe_hot_spot(r, WeldToe::plus_x));
+  const auto minus = out.add_hot_spot(weld_toe_hot_spot(r, WeldToe::minus_x));
+  HotSpotLocation into_weld = weld_toe_hot_spot(r, WeldToe::minus_x);
+  into_weld.away = Vector3d::UnitX();
+  const auto wrong = out.add_hot_spot(into_weld);
+  REQUIRE((plus.ok() && minus.ok() && wrong.ok()));
+  auto rows = out.rows(s);
+  REQUIRE(rows.ok());
+  VectorXd ub = VectorXd::Zero(12);  // the top flange, where the rib is, in tension
+  ub(5) = 5e-4;
+  ub(11) = -5e-4;
+  const VectorXd y = *rows * ub;
+  MESSAGE("hot spots: +x toe " << y(*plus) << " Pa, -x toe " << y(*minus)
+                               << " Pa, -x toe read into the weld " << y(*wrong) << " Pa");
+  CHECK(y(*plus) > 0);
+  CHECK(y(*minus) == doctest::Approx(y(*plus)).epsilon(1e-4));  // the generator's mesh is mirrored
+  CHECK(y(*wrong) < 0.9 * y(*minus));
 }
 
 TEST_CASE("the hot-spot stress is insensitive to the sub-model mesh (three densities)" *

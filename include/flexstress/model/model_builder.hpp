@@ -53,13 +53,10 @@ class ModelBuilder {
                         const Mat3<Scalar>& inertia_about_com);
 
   /// A flexible body from reduced FE data keeping its lowest `modes` deformation modes (any
-  /// count the data has, up to max_runtime_modes). Modal damping follows the data's damping
-  /// ratios (set_damping_ratio changes them).
+  /// count the data has, up to max_runtime_modes; reduction::truncation_warning's warning if
+  /// they lose static flexibility at an interface node). Damping: the data's ratios.
   BodyId add_flexible_body(const std::string& name, const reduction::ModalBodyData& data,
                            int modes);
-  // Fewer modes than a Craig-Bampton basis holds can lose the static flexibility at the
-  // interface nodes (its constraint modes are among the highest after orthonormalization):
-  // the model's warnings() then name the body, the node and the DOF.
 
   /// Geometric stiffening of a flexible body under its own inertial and gravity loads: K_G
   /// from modal geometric stiffness per unit load case (reduction/modal_geometric_stiffness.hpp;
@@ -508,12 +505,6 @@ class ModelBuilder {
   void fail(ErrorCode code, const Parts&... parts) {
     if (first_error_.message.empty()) first_error_ = make_error(code, parts...);
   }
-  template <class... Parts>
-  void warn(const Parts&... parts) {
-    std::string text;
-    (detail::append_part(text, parts), ...);
-    warnings_.push_back(std::move(text));
-  }
 
   Pending& body_entry(BodyId b, const char* what) {
     if (b.index < 0 || b.index >= static_cast<int>(bodies_.size())) {
@@ -601,14 +592,8 @@ BodyId ModelBuilder<Scalar>::add_flexible_body(const std::string& name,
   }
   if (!error.message.empty())
     fail(error.code, "body '", name, "': ", error.message);
-  else if (auto least =
-               modes > 0 ? reduction::least_kept_interface_flexibility(data, modes) : std::nullopt)
-    warn("body '", name, "': its lowest ", modes, " of the data's ", data.num_modes,
-         " modes carry ", std::round(1000 * least->fraction) / 10,
-         " % of the static flexibility at interface node ", least->node, ", ",
-         reduction::dof_name(least->dof),
-         ": a joint loading it there cannot take its static shape; choose the count in the "
-         "reduction and keep all its modes");
+  else if (std::string w = reduction::truncation_warning(name, data, modes); !w.empty())
+    warnings_.push_back(std::move(w));
   return push(std::move(p));
 }
 

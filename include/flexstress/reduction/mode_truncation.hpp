@@ -11,8 +11,11 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -90,6 +93,22 @@ inline const char* dof_name(int dof) {
                                        "translation along z", "rotation about x",
                                        "rotation about y",    "rotation about z"};
   return dof >= 0 && dof < 6 ? names[dof] : "no DOF";
+}
+
+/// What ModelBuilder warns of for body `name` keeping the lowest `kept` modes of `data`: the
+/// least kept share under 99 %, naming the node and DOF; "" if there is none (or no modes).
+inline std::string truncation_warning(const std::string& name, const ModalBodyData& data,
+                                      Index kept) {
+  const auto least = kept > 0 ? least_kept_interface_flexibility(data, kept) : std::nullopt;
+  if (!least) return {};
+  char percent[32];
+  std::snprintf(percent, sizeof percent, "%.6g", std::round(1000 * least->fraction) / 10);
+  return "body '" + name + "': its lowest " + std::to_string(kept) + " of the data's " +
+         std::to_string(data.num_modes) + " modes carry " + percent +
+         " % of the static flexibility at interface node " + std::to_string(least->node) + ", " +
+         dof_name(least->dof) +
+         ": a joint loading it there cannot take its static shape; choose the count in the "
+         "reduction and keep all its modes";
 }
 
 }  // namespace flexstress::reduction

@@ -13,13 +13,15 @@
 //                [--accept-at-limit] [--newton-budget N]
 //                [--no-extrapolate] [--no-extrapolate-predictor]
 //                [--no-extrapolate-multipliers] [--pieces-as-whole-steps]
+//                [--multiplier-pass-always] [--drift-limit L]
 //
 // --newton-budget N: a real-time budget, --max-iterations N with --accept-at-limit: a step that
 // reaches N iterations keeps its last iterate and the run goes on; the summary counts those
 // steps and gives the largest final correction among them over the tolerance (1: converged).
 //
 // The rod's out-of-plane velocities, which the joints forbid, grow from round-off; the
-// defaults project them when they drift (ImplicitSettings::velocity_drift_limit). Over runs
+// defaults project them when they drift (ImplicitSettings::velocity_drift_limit; --drift-limit
+// sets it, 0 never projects). Over runs
 // longer than about 0.26 s the redundant loop's extrapolated multipliers drift too
 // (--no-extrapolate-multipliers holds them; docs/dynamics.md, "The flexible slider crank").
 //
@@ -88,7 +90,8 @@ int usage() {
          "                    [--max-iterations N]\n"
          "                    [--accept-at-limit] [--newton-budget N] [--no-extrapolate]\n"
          "                    [--no-extrapolate-predictor] [--no-extrapolate-multipliers]\n"
-         "                    [--pieces-as-whole-steps]\n"
+         "                    [--pieces-as-whole-steps] [--multiplier-pass-always]\n"
+         "                    [--drift-limit L]\n"
          "  --newton-budget N: at most N Newton iterations per step; a step that reaches\n"
          "  them keeps its last iterate and the run goes on (--max-iterations N with\n"
          "  --accept-at-limit); the summary counts the steps kept at the budget\n";
@@ -144,6 +147,12 @@ int main(int argc, char** argv) {
       settings.linearized_multipliers = LinearizedMultipliers::off;
       settings.refactorize_pieces = false;
       changed.push_back(a);
+    } else if (a == "--multiplier-pass-always") {  // the Uzawa pass in whole steps too
+      settings.linearized_multipliers = LinearizedMultipliers::always;
+      changed.push_back(a);
+    } else if (a == "--drift-limit" && has_value) {
+      settings.velocity_drift_limit = std::atof(argv[++i]);
+      changed.push_back(a + " " + argv[i]);
     } else if (a == "--no-corotate") {
       settings.corotate_factorization = false;
       changed.push_back(a);

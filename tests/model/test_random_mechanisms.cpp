@@ -266,6 +266,7 @@ struct Outcome {
   bool ran = false;
   std::string failure;
   double growth = 0;  ///< largest growth of the energy balance over the largest kinetic energy
+  bool conservative = false;  ///< no drive
 };
 
 /// Runs one mechanism for `duration` on the defaults (the step divided by `refine`, the local
@@ -327,7 +328,8 @@ Outcome run(const Mechanism& mech, unsigned long seed, double duration, int refi
 /// motion: at h / 4, 2 to 3 times smaller on three seeds.)
 Outcome run_and_check_energy(unsigned long seed, double duration) {
   const Mechanism mech = generate(seed);
-  const Outcome o = run(mech, seed, duration);
+  Outcome o = run(mech, seed, duration);
+  o.conservative = !mech.driven;
   if (!o.ran || mech.driven || o.growth <= 0.01) return o;
   const Outcome fine = run(mech, seed, duration, 4);
   CAPTURE(seed);
@@ -344,7 +346,7 @@ Outcome run_and_check_energy(unsigned long seed, double duration) {
 TEST_CASE("random mechanisms run on the defaults or fail naming the part, never silently") {
   const long count = environment_count("FLEXSTRESS_RANDOM_MECHANISMS", 200);
   const long first = environment_count("FLEXSTRESS_RANDOM_FIRST_SEED", 1);
-  long ran = 0, grew = 0;
+  long ran = 0, grew = 0, conservative_grew = 0;
   double worst_growth = 0;
   std::ostringstream failures;
   for (long seed = first; seed < first + count; ++seed) {
@@ -352,24 +354,30 @@ TEST_CASE("random mechanisms run on the defaults or fail naming the part, never 
     if (o.ran) {
       ++ran;
       grew += o.growth > 0.01;
+      conservative_grew += o.conservative && o.growth > 0.01;
       worst_growth = std::max(worst_growth, o.growth);
     } else {
       failures << "  seed " << seed << ": " << o.failure << "\n";
     }
   }
   MESSAGE(ran << " of " << count << " mechanisms ran 2 s (" << grew
-              << " of them with an energy growth above 1 % of their largest kinetic energy, at "
-                 "most "
-              << worst_growth << "); the others stopped with:\n"
+              << " of them with an energy growth above 1 % of their largest kinetic energy, "
+              << conservative_grew << " of those conservative; the largest growth " << worst_growth
+              << "); the others stopped with:\n"
               << failures.str());
   // A guard against regressions of the defaults on the first 200 seeds (the default run) and
-  // on their halves (ctest runs the halves in parallel): 189 of them ran, 94 and 95 (clang 14,
-  // -O1, the tests' build).
+  // on their halves (ctest runs the halves in parallel): 192 of them ran, 96 and 96 (clang 14,
+  // -O1, the tests' build), and no conservative one grew its energy by more than 1 % of its
+  // largest kinetic energy (at most 0.36 %; 6 did, by up to 6.0 %, before drifted velocities
+  // were projected in the mass metric).
   struct Guard {
     long first, count, at_least;
   };
-  for (const Guard g : {Guard{1, 200, 184}, Guard{1, 100, 91}, Guard{101, 100, 92}})
-    if (first == g.first && count == g.count) CHECK(ran >= g.at_least);
+  for (const Guard g : {Guard{1, 200, 188}, Guard{1, 100, 93}, Guard{101, 100, 93}})
+    if (first == g.first && count == g.count) {
+      CHECK(ran >= g.at_least);
+      CHECK(conservative_grew == 0);
+    }
 }
 
 }  // namespace test_random_mechanisms

@@ -46,6 +46,14 @@ class NoAllocationScope {
   long long before_;
 };
 
+// Takes `steps` steps (up to a failed one) and returns the allocations they made.
+long long allocations_in_steps(const Model<double>& model, Data<double>& d, int steps) {
+  NoAllocationScope scope;
+  for (int i = 0; i < steps; ++i)
+    if (step(model, d) != StepStatus::ok) break;
+  return scope.count();
+}
+
 // The host: a 1.2 m RHS 150x100x4 beam hinged at x = 0, `modes` modes, 2 % damping.
 testing::BeamBody hinged_host(int modes = N) {
   auto host = testing::make_beam_body(1.2, fe::rectangular_hollow_section(0.150, 0.100, 0.004), 12,
@@ -216,13 +224,7 @@ TEST_CASE("with the kernels of a compiled mode count the steps allocate nothing 
   set_body_velocity(h.model, s, h.body, Vector3d::Zero(), Vector3d(0, 0, 2.0));
   REQUIRE(initialize(h.model, s).ok());
   REQUIRE(step(h.model, s) == StepStatus::ok);
-  long long counted = 0;
-  {
-    NoAllocationScope scope;
-    for (int i = 0; i < 200; ++i)
-      if (step(h.model, s) != StepStatus::ok) break;
-    counted = scope.count();
-  }
+  long long counted = allocations_in_steps(h.model, s, 200);
   CHECK(counted == 0);
   CHECK(s.t == doctest::Approx(0.201).epsilon(1e-9));
   CHECK(explicit_steps_allocate(h) == 0);
@@ -278,14 +280,7 @@ TEST_CASE("a step taken in pieces allocates nothing either") {
   set_body_velocity(h.model, s, h.body, Vector3d::Zero(), Vector3d(0, 0, 30.0));
   REQUIRE(initialize(h.model, s).ok());
   REQUIRE(step(h.model, s) == StepStatus::ok);
-  long long counted = 0;
-  {
-    NoAllocationScope scope;
-    for (int i = 0; i < 10; ++i)
-      if (step(h.model, s) != StepStatus::ok) break;
-    counted = scope.count();
-  }
-  CHECK(counted == 0);
+  CHECK(allocations_in_steps(h.model, s, 10) == 0);
   CHECK(s.statistics.split_steps > 1);
   CHECK(s.t == doctest::Approx(0.55).epsilon(1e-9));
 }
@@ -300,14 +295,7 @@ TEST_CASE("velocities projected after they drift allocate nothing either") {
   set_body_velocity(h.model, s, h.body, Vector3d::Zero(), Vector3d(0, 0, 3.0));
   REQUIRE(initialize(h.model, s).ok());
   REQUIRE(step(h.model, s) == StepStatus::ok);
-  long long counted = 0;
-  {
-    NoAllocationScope scope;
-    for (int i = 0; i < 10; ++i)
-      if (step(h.model, s) != StepStatus::ok) break;
-    counted = scope.count();
-  }
-  CHECK(counted == 0);
+  CHECK(allocations_in_steps(h.model, s, 10) == 0);
   CHECK(s.t == doctest::Approx(0.011).epsilon(1e-9));
   CHECK(s.statistics.drift_projections >= 10);
 }

@@ -560,7 +560,6 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   }
   if (model.has_force_states()) update_force_states(model, d, /*start=*/false);
   if (project) {
-    // A singular configuration's lost directions contract slowly in the projection too.
     // Velocities that drifted are projected in the mass metric (least change of kinetic
     // energy), not in S, whose stiffness and b' scaling make it no measure of kinetic energy:
     // projected in S, 6 of the 200 random mechanisms' conservative ones gained over 1 % of
@@ -570,6 +569,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
       detail::factorize_projection(model, d);
       ++d.statistics.factorizations;
     }
+    // A singular configuration's lost directions contract slowly in the projection too.
     detail::project_velocities(model, d, (kept_stalled ? 10 : 1) * s.projection_iterations);
     if (s.project_accelerations) {
       update_kinematics(model, d);

@@ -147,8 +147,9 @@ struct ImplicitSettings {
   /// round-off (the flexible slider crank: by a factor of about 2 per step, until Newton
   /// fails), and a drift well short of failing already slows Newton: that crank over 1 s at
   /// 0.1 ms takes 2.18 iterations per step with its limit at 1e-5, 4.68 at 1e-3. Drifted
-  /// velocities are projected in the mass metric (a factorization of M + alpha B^T B). 0
-  /// switches it off.
+  /// velocities are projected in the mass metric (a factorization of M + alpha B^T B). The
+  /// limit never falls below position_floor times the largest coordinate over h, what
+  /// round-off alone makes. 0 switches it off.
   Scalar velocity_drift_limit = std::is_same_v<Scalar, float> ? Scalar(1e-2) : Scalar(1e-3);
   /// Also project accelerations onto B v_dot + conv = 0 (needs project_velocities).
   bool project_accelerations = false;

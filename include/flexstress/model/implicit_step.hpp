@@ -31,9 +31,11 @@
 // R_dot and body-frame w and p_dot, a body's own blocks of M and B^T B are T S_0 T^T with T =
 // diag(A, 1, 1), so rotating the R_dot parts of the residual and correction by the rotation since
 // the factorization makes them exact again for any rigid rotation. With
-// ImplicitSettings::project_velocities (or when they drift, velocity_drift_limit), after
-// convergence the velocities are projected onto B v + Phi_t = 0 with the same factorization, a
-// projection orthogonal in the metric S (dominated by M b'), which removes velocity drift.
+// ImplicitSettings::project_velocities, after convergence the velocities are projected onto
+// B v + Phi_t = 0 with the same factorization, a projection orthogonal in the metric S
+// (dominated by M b'), which removes velocity drift; velocities that drifted on their own
+// (velocity_drift_limit) are projected in the mass metric instead, with a factorization of
+// their own.
 // d.lambda then holds the multipliers of the converged equations, lambda* + alpha Phi.
 #pragma once
 
@@ -547,10 +549,12 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   if (!project && s.velocity_drift_limit > Scalar(0) && model.num_constraints() > 0) {
     jacobian_times(model, d, d.v, in.e);
     in.e += d.phi_t;
-    // A sound run's drift is O(h^2): below 1 ms the limit shrinks with h^2 (of the whole step).
+    // A sound run's drift is O(h^2): below 1 ms the limit shrinks with h^2 (of the whole step),
+    // but never below the velocity error that the coordinates' round-off makes over a step.
     const Scalar h_ms = std::min(Scalar(1), s.step / Scalar(1e-3));
-    drifted = project =
-        max_abs(in.e) > s.velocity_drift_limit * h_ms * h_ms * (Scalar(1) + max_abs(d.v));
+    const Scalar limit = std::max(s.velocity_drift_limit * h_ms * h_ms * (Scalar(1) + max_abs(d.v)),
+                                  s.position_floor * std::max(Scalar(1), max_abs(d.q)) / s.step);
+    drifted = project = max_abs(in.e) > limit;
     if (project) ++d.statistics.drift_projections;
   }
   if (s.refresh_workspace || project || model.has_force_states()) {
@@ -568,6 +572,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
     if (drifted) {
       detail::factorize_projection(model, d);
       ++d.statistics.factorizations;
+      ++d.statistics.last_factorizations;
     }
     // A singular configuration's lost directions contract slowly in the projection too.
     detail::project_velocities(model, d, (kept_stalled ? 10 : 1) * s.projection_iterations);

@@ -34,8 +34,7 @@
 // ImplicitSettings::project_velocities, after convergence the velocities are projected onto
 // B v + Phi_t = 0 with the same factorization, a projection orthogonal in the metric S
 // (dominated by M b'), which removes velocity drift; velocities that drifted on their own
-// (velocity_drift_limit) are projected in the mass metric instead, with a factorization of
-// their own.
+// (velocity_drift_limit) are projected in the mass metric, factorized for it.
 // d.lambda then holds the multipliers of the converged equations, lambda* + alpha Phi.
 #pragma once
 
@@ -549,8 +548,7 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   if (!project && s.velocity_drift_limit > Scalar(0) && model.num_constraints() > 0) {
     jacobian_times(model, d, d.v, in.e);
     in.e += d.phi_t;
-    // A sound run's drift is O(h^2): below 1 ms the limit shrinks with h^2 (of the whole step),
-    // but never below the velocity error that the coordinates' round-off makes over a step.
+    // Sound drift is O(h^2): the limit shrinks with h^2 below 1 ms, down to round-off's level.
     const Scalar h_ms = std::min(Scalar(1), s.step / Scalar(1e-3));
     const Scalar limit = std::max(s.velocity_drift_limit * h_ms * h_ms * (Scalar(1) + max_abs(d.v)),
                                   s.position_floor * std::max(Scalar(1), max_abs(d.q)) / s.step);
@@ -564,11 +562,8 @@ StepStatus step_whole(const Model<Scalar>& model, Data<Scalar>& d, bool control_
   }
   if (model.has_force_states()) update_force_states(model, d, /*start=*/false);
   if (project) {
-    // Velocities that drifted are projected in the mass metric (least change of kinetic
-    // energy), not in S, whose stiffness and b' scaling make it no measure of kinetic energy:
-    // projected in S, 6 of the 200 random mechanisms' conservative ones gained over 1 % of
-    // their largest kinetic energy, none in M. It costs a factorization, and the next step its
-    // own.
+    // Drifted velocities: in the mass metric, as S is no measure of kinetic energy (in S, 6
+    // conservative random mechanisms gained over 1 % energy, in M none); its own factorization.
     if (drifted) {
       detail::factorize_projection(model, d);
       ++d.statistics.factorizations;
